@@ -1,0 +1,17 @@
+#pragma once
+// Each subcommand registers itself on the CLI11 app; its callback stores the exit code.
+#include <CLI/CLI.hpp>
+
+namespace rtsph::app {
+
+void add_run_command(CLI::App& app, int& exit_code);
+void add_bench_command(CLI::App& app, int& exit_code);
+void add_scenes_command(CLI::App& app, int& exit_code);
+#ifdef RTSPH_HAVE_VIEWER
+void add_view_command(CLI::App& app, int& exit_code);    // apps/viewer/
+void add_render_command(CLI::App& app, int& exit_code);  // apps/viewer/
+/// `rtsph` with no arguments: the viewer on dam_break_3d, or a headless render without display.
+int run_default(int argc, char** argv);
+#endif
+
+}  // namespace rtsph::app

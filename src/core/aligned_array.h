@@ -1,0 +1,70 @@
+#pragma once
+// Cache-line aligned storage with a tail of kPad spare elements, so 8-wide loads that start
+// inside a range may read past its last element without touching unowned memory.
+#include <algorithm>
+#include <cstddef>
+#include <cstdlib>
+#include <cstring>
+#include <new>
+#include <utility>
+
+namespace rtsph {
+
+template <class T>
+class AlignedArray {
+ public:
+  static constexpr std::size_t kPad = 16;
+  AlignedArray() = default;
+  explicit AlignedArray(std::size_t n) { resize(n); }
+  AlignedArray(const AlignedArray& o) { *this = o; }
+  AlignedArray(AlignedArray&& o) noexcept { swap(o); }
+  AlignedArray& operator=(const AlignedArray& o) {
+    if (this != &o) {
+      resize(o.size_);
+      if (o.size_) std::memcpy(data_, o.data_, o.size_ * sizeof(T));
+    }
+    return *this;
+  }
+  AlignedArray& operator=(AlignedArray&& o) noexcept { swap(o); return *this; }
+  ~AlignedArray() { std::free(data_); }
+
+  void swap(AlignedArray& o) noexcept {
+    std::swap(data_, o.data_);
+    std::swap(size_, o.size_);
+    std::swap(cap_, o.cap_);
+  }
+  /// Grows capacity geometrically; new elements and the pad are zero.
+  void resize(std::size_t n) {
+    if (n > cap_) reserve(std::max(n, cap_ + cap_ / 2));
+    if (n > size_) std::memset(static_cast<void*>(data_ + size_), 0, (n - size_) * sizeof(T));
+    size_ = n;
+  }
+  void reserve(std::size_t cap) {
+    if (cap <= cap_) return;
+    const std::size_t bytes = ((cap + kPad) * sizeof(T) + 63) / 64 * 64;
+    T* p = static_cast<T*>(std::aligned_alloc(64, bytes));
+    if (!p) throw std::bad_alloc();
+    std::memset(static_cast<void*>(p), 0, bytes);
+    if (size_) std::memcpy(static_cast<void*>(p), data_, size_ * sizeof(T));
+    std::free(data_);
+    data_ = p;
+    cap_ = cap;
+  }
+  std::size_t size() const { return size_; }
+  std::size_t capacity() const { return cap_; }
+  std::size_t bytes() const { return data_ ? (cap_ + kPad) * sizeof(T) : 0; }
+  T* data() { return data_; }
+  const T* data() const { return data_; }
+  T& operator[](std::size_t i) { return data_[i]; }
+  const T& operator[](std::size_t i) const { return data_[i]; }
+  T* begin() { return data_; }
+  T* end() { return data_ + size_; }
+  const T* begin() const { return data_; }
+  const T* end() const { return data_ + size_; }
+
+ private:
+  T* data_ = nullptr;
+  std::size_t size_ = 0, cap_ = 0;
+};
+
+}  // namespace rtsph

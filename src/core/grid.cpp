@@ -1,0 +1,72 @@
+#include "core/grid.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+namespace rtsph {
+
+template <int D>
+void UniformGrid<D>::configure(const Vec<D>& lo, const Vec<D>& hi, Real cell) {
+  cell_ = cell;
+  inv_cell_ = Real(1) / cell;
+  std::size_t cells = 1;
+  for (int a = 0; a < D; ++a) {
+    // +2 padding cells so the stencil of any clamped particle stays inside the grid.
+    const double span = std::max(0.0, double(hi[a]) - double(lo[a]));
+    const double interior = std::max(1.0, std::ceil(span / cell + 1e-6));
+    if (interior > 1e7) throw std::length_error("neighbour grid too large");
+    dims_[a] = int(interior) + 2;
+    origin_[a] = lo[a] - cell;
+    cells *= std::size_t(dims_[a]);
+  }
+  if (cells >= (std::size_t(1) << 31)) throw std::length_error("neighbour grid too large");
+  cells_ = cells;
+  start_.resize(cells_ + 1);
+}
+
+template <int D>
+uint32_t UniformGrid<D>::cell_of(const Vec<D>& p) const {
+  uint32_t key = 0, stride = 1;
+  for (int a = 0; a < D; ++a) {
+    const Real f = (p[a] - origin_[a]) * inv_cell_;
+    // The comparison form also sends NaN to the edge cell instead of undefined behaviour.
+    int c = f >= Real(1) ? (f < Real(dims_[a] - 1) ? int(f) : dims_[a] - 2) : 1;
+    key += uint32_t(c) * stride;
+    stride *= uint32_t(dims_[a]);
+  }
+  return key;
+}
+
+template <int D>
+void UniformGrid<D>::build(const Real* const xs[D], std::size_t n, const ThreadPool& pool) {
+  n_ = n;
+  keys_.resize(n);
+  keys_sorted_.resize(n);
+  order_.resize(n);
+  pool.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      Vec<D> p;
+      for (int a = 0; a < D; ++a) p[a] = xs[a][i];
+      keys_[i] = cell_of(p);
+    }
+  });
+  // Stable counting sort: histogram, exclusive prefix sum, scatter in input order.
+  uint32_t* s = start_.data();
+  std::fill(s, s + cells_ + 1, 0u);
+  for (std::size_t i = 0; i < n; ++i) ++s[keys_[i] + 1];
+  for (std::size_t c = 0; c < cells_; ++c) s[c + 1] += s[c];
+  // s[c] is now the first slot of cell c; scatter using s as cursors, then shift back.
+  for (std::size_t i = 0; i < n; ++i) {
+    const uint32_t slot = s[keys_[i]]++;
+    order_[slot] = uint32_t(i);
+    keys_sorted_[slot] = keys_[i];
+  }
+  for (std::size_t c = cells_; c > 0; --c) s[c] = s[c - 1];
+  s[0] = 0;
+}
+
+template class UniformGrid<2>;
+template class UniformGrid<3>;
+
+}  // namespace rtsph

@@ -1,0 +1,93 @@
+#pragma once
+// The dimension-erased face of a running simulation: what apps, exporters and renderers use.
+// Two Simulation objects share nothing, so they can run side by side (tests do).
+#include <cstdint>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "core/particles.h"
+#include "solvers/spec.h"
+
+namespace rtsph {
+
+/// Wall-clock time per stage, accumulated since construction or reset_timings().
+struct StageTimes {
+  double neighbours_s = 0, density_s = 0, forces_s = 0, integrate_s = 0;
+  double total() const { return neighbours_s + density_s + forces_s + integrate_s; }
+};
+
+struct SimStats {
+  std::size_t fluid_particles = 0, boundary_particles = 0;
+  std::uint64_t steps = 0;
+  double time_s = 0, dt_s = 0;
+  double c0 = 0;                        // m/s, speed of sound in use
+  double h = 0;                         // m, smoothing length
+  double density_error = 0;             // max (ρ-ρ0)/ρ0 over fluid, last step
+  double max_density_error = 0;         // the same, maximum over the run
+  std::uint64_t particles_put_back = 0; // escaped the domain and were put back inside
+  double kinetic_energy_j = 0, potential_energy_j = 0;
+  double max_speed = 0;                 // m/s
+  std::size_t bytes = 0;                // particle, grid and scratch storage
+};
+
+/// A radial push (strength > 0) or pull (< 0) applied by the viewer's mouse brush.
+struct Brush {
+  bool active = false;
+  Vec3d center{};
+  double radius = 0.2;      // m
+  double strength = 50.0;   // m/s² at the centre, falling linearly to 0 at the radius
+};
+
+/// One named block of raw state, for checkpoints. Sizes are fixed once prepare_state() ran.
+struct StateField {
+  std::string name;
+  void* data;
+  std::size_t bytes;
+};
+
+class Simulation {
+ public:
+  virtual ~Simulation() = default;
+  virtual int dimension() const = 0;
+  virtual const SimSpec& spec() const = 0;
+
+  /// Advances one time step (adaptive or fixed, per the spec).
+  virtual void step() = 0;
+  virtual double time() const = 0;
+  virtual std::uint64_t step_count() const = 0;
+  virtual SimStats stats() const = 0;
+  virtual const StageTimes& stage_times() const = 0;
+  virtual void reset_stage_times() = 0;
+
+  /// Views stay valid until the next step() (arrays are reordered every step).
+  virtual ParticleView fluid() const = 0;
+  virtual BoundaryView boundary() const = 0;
+
+  // Interaction (viewer). Changes take effect at the next step.
+  virtual void set_gravity(const Vec3d& g) = 0;
+  virtual void set_brush(const Brush& b) = 0;
+  /// Moves obstacle `index` kinematically towards `center` during the next step; the implied
+  /// velocity (Δx/dt) acts on the fluid.
+  virtual void move_obstacle(int index, const Vec3d& center) = 0;
+  virtual Vec3d obstacle_center(int index) const = 0;
+  /// Applies parameters that are safe to change while running (viscosity, α, CFL, gravity…).
+  virtual void set_live_parameters(const SimSpec& s) = 0;
+
+  // Checkpoints: prepare_state(n) sizes the state for n fluid particles (use the count from the
+  // file when loading); state_fields() then lists every block of memory the step depends on.
+  virtual void prepare_state(std::size_t fluid_count) = 0;
+  virtual std::vector<StateField> state_fields() = 0;
+  /// Call after filling the fields from a checkpoint: rebuilds derived data (grids).
+  virtual void state_loaded() = 0;
+};
+
+/// Creates the solver named by spec.method ("wcsph"). threads = 0 uses all hardware threads.
+/// Throws std::invalid_argument for an unknown method and std::length_error for a scene that
+/// would not fit in memory.
+std::unique_ptr<Simulation> make_simulation(const SimSpec& spec, int threads);
+
+/// The registered solver method names, for validation and help text.
+std::vector<std::string> solver_methods();
+
+}  // namespace rtsph

@@ -87,6 +87,11 @@ class Simulation {
 /// would not fit in memory.
 std::unique_ptr<Simulation> make_simulation(const SimSpec& spec, int threads);
 
+/// Bytes the simulation would allocate for this spec (particles, boundary, grids, scratch),
+/// estimated from the geometry without allocating. Scene validation refuses specs that exceed
+/// the machine's memory using this.
+std::size_t estimate_memory_bytes(const SimSpec& spec);
+
 /// The registered solver method names, for validation and help text.
 std::vector<std::string> solver_methods();
 

@@ -2,6 +2,7 @@
 // Each subcommand registers itself on the CLI11 app; its callback stores the exit code.
 #include <CLI/CLI.hpp>
 
+
 namespace rtsph::app {
 
 void add_run_command(CLI::App& app, int& exit_code);

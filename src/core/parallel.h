@@ -26,6 +26,13 @@ class ThreadPool {
   int threads_;
 };
 
+/// Reduction value that combines by maximum, for parallel_reduce.
+template <class T>
+struct MaxOf {
+  T value;
+  MaxOf& operator+=(const MaxOf& o) { if (o.value > value) value = o.value; return *this; }
+};
+
 namespace detail {
 void run_blocks(int threads, std::size_t blocks, void* ctx, void (*call)(void*, std::size_t));
 }

@@ -1,0 +1,133 @@
+// Read access, statistics and checkpoint state of WCSPH.
+#include <cstring>
+
+#include "solvers/wcsph.h"
+
+namespace rtsph {
+
+template <int D>
+ParticleView Wcsph<D>::fluid() const {
+  ParticleView v;
+  v.dim = D;
+  v.count = fluid_.size();
+  for (int k = 0; k < D; ++k) { v.x[k] = fluid_.x[k].data(); v.v[k] = fluid_.v[k].data(); }
+  v.density = fluid_.rho.data();
+  v.pressure = fluid_.p.data();
+  v.id = fluid_.id.data();
+  return v;
+}
+
+template <int D>
+BoundaryView Wcsph<D>::boundary() const {
+  BoundaryView v;
+  v.dim = D;
+  v.count = boundary_.size();
+  for (int k = 0; k < D; ++k) v.x[k] = boundary_.x[k].data();
+  v.owner = boundary_.owner.data();
+  return v;
+}
+
+template <int D>
+SimStats Wcsph<D>::stats() const {
+  SimStats s;
+  s.fluid_particles = fluid_.size();
+  s.boundary_particles = boundary_.size();
+  s.steps = steps_;
+  s.time_s = time_;
+  s.dt_s = dt_;
+  s.c0 = prm_.c0;
+  s.h = prm_.h;
+  s.density_error = density_error_;
+  s.max_density_error = max_density_error_;
+  s.particles_put_back = put_back_;
+  struct Energy {
+    double ke = 0, pe = 0, v2max = 0;
+    Energy& operator+=(const Energy& o) {
+      ke += o.ke; pe += o.pe; v2max = std::max(v2max, o.v2max);
+      return *this;
+    }
+  };
+  const Energy e = pool_.parallel_reduce(fluid_.size(), Energy{}, [&](std::size_t b, std::size_t end) {
+    Energy r;
+    for (std::size_t i = b; i < end; ++i) {
+      double v2 = 0, gx = 0;
+      for (int k = 0; k < D; ++k) {
+        v2 += double(fluid_.v[k][i]) * fluid_.v[k][i];
+        gx += spec_.gravity[k] * fluid_.x[k][i];
+      }
+      r.ke += 0.5 * prm_.mass * v2;
+      r.pe -= prm_.mass * gx;
+      r.v2max = std::max(r.v2max, v2);
+    }
+    return r;
+  });
+  s.kinetic_energy_j = e.ke;
+  s.potential_energy_j = e.pe;
+  s.max_speed = std::sqrt(e.v2max);
+  s.bytes = fluid_.bytes() + boundary_.bytes() + ctx_.bytes();
+  return s;
+}
+
+// Checkpoint layout: every array and scalar step() reads. Boundary particles are included
+// because moving obstacles change them; grids and scratch are rebuilt by state_loaded().
+template <int D>
+void Wcsph<D>::prepare_state(std::size_t fluid_count) { fluid_.resize(fluid_count); }
+
+template <int D>
+std::vector<StateField> Wcsph<D>::state_fields() {
+  std::vector<StateField> f;
+  auto arr = [&](const std::string& name, auto& a) {
+    f.push_back({name, static_cast<void*>(a.data()), a.size() * sizeof(a[0])});
+  };
+  auto scalar = [&](const std::string& name, auto& v) {
+    f.push_back({name, static_cast<void*>(&v), sizeof(v)});
+  };
+  const char* axis[3] = {"x", "y", "z"};
+  for (int k = 0; k < D; ++k) {
+    arr(std::string("fluid.x.") + axis[k], fluid_.x[k]);
+    arr(std::string("fluid.v.") + axis[k], fluid_.v[k]);
+    arr(std::string("fluid.a.") + axis[k], fluid_.a[k]);
+    arr(std::string("boundary.x.") + axis[k], boundary_.x[k]);
+    arr(std::string("boundary.v.") + axis[k], boundary_.v[k]);
+    arr(std::string("boundary.local.") + axis[k], boundary_.local[k]);
+  }
+  arr("fluid.rho", fluid_.rho);
+  arr("fluid.p", fluid_.p);
+  arr("fluid.id", fluid_.id);
+  arr("boundary.psi", boundary_.psi);
+  arr("boundary.owner", boundary_.owner);
+  scalar("time", time_);
+  scalar("dt", dt_);
+  scalar("steps", steps_);
+  scalar("put_back", put_back_);
+  scalar("next_id", next_id_);
+  scalar("density_error", density_error_);
+  scalar("max_density_error", max_density_error_);
+  scalar("boundary_moving", boundary_moving_);
+  f.push_back({"emitters", emitters_.data(), emitters_.size() * sizeof(EmitterState)});
+  f.push_back({"obstacles", obstacles_.data(), obstacles_.size() * sizeof(ObstacleState)});
+  return f;
+}
+
+template <int D>
+void Wcsph<D>::state_loaded() {
+  // Rebuild the grids for the loaded order without reordering: the arrays were saved sorted,
+  // and resorting here could permute particles within a cell differently than a straight run.
+  const Real* xs[D];
+  for (int k = 0; k < D; ++k) xs[k] = boundary_.x[k].data();
+  ctx_.boundary_grid.build(xs, boundary_.size(), pool_);
+  boundary_.permute(ctx_.boundary_grid.order(), ctx_.tmp, pool_);
+}
+
+#define RTSPH_INSTANTIATE(D)                                            \
+  template ParticleView Wcsph<D>::fluid() const;                        \
+  template BoundaryView Wcsph<D>::boundary() const;                     \
+  template SimStats Wcsph<D>::stats() const;                            \
+  template void Wcsph<D>::prepare_state(std::size_t);                   \
+  template std::vector<StateField> Wcsph<D>::state_fields();            \
+  template void Wcsph<D>::state_loaded();
+RTSPH_INSTANTIATE(2)
+RTSPH_INSTANTIATE(3)
+#undef RTSPH_INSTANTIATE
+
+}  // namespace rtsph

@@ -1,0 +1,168 @@
+// The particle sums of WCSPH: density and accelerations. Each fluid particle gathers from its
+// neighbours in a fixed order (cell ranges, then 8-lane batches, then a fixed lane reduction),
+// so results are bitwise identical for any thread count.
+#include <cmath>
+
+#include "core/pair_loop.h"
+#include "solvers/wcsph.h"
+
+namespace rtsph {
+
+using simd::f8;
+using simd::i8;
+
+template <int D>
+void Wcsph<D>::compute_density() {
+  const std::size_t n = fluid_.size();
+  const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
+  const Real* fx[D];
+  const Real* bx[D];
+  for (int k = 0; k < D; ++k) { fx[k] = fluid_.x[k].data(); bx[k] = boundary_.x[k].data(); }
+  const Real* psi = boundary_.psi.data();
+  const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
+  Real* rho = fluid_.rho.data();
+  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        Real xi[D];
+        for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
+        f8 wf{}, wb{};
+        for_each_candidate_batch<D>(ctx_.fluid_grid, cells[i], fx, xi, support2,
+                                    [&](uint32_t, const f8*, f8 r2, i8 m) {
+                                      wf += simd::select(m, K.value(r2), f8{});
+                                    });
+        for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
+                                    [&](uint32_t j, const f8*, f8 r2, i8 m) {
+                                      wb += simd::select(m, simd::load(psi + j) * K.value(r2), f8{});
+                                    });
+        rho[i] = mass * simd::hsum(wf) + simd::hsum(wb);
+      }
+    });
+  });
+}
+
+// aᵢ = −Σⱼ mⱼ (pᵢ/ρᵢ² + pⱼ/ρⱼ² + Πᵢⱼ) ∇Wᵢⱼ                      symmetric pressure (Monaghan 1992)
+//      + Σⱼ mⱼ ν (1/ρᵢ + 1/ρⱼ) (rᵢⱼ·∇Wᵢⱼ)/(r² + 0.01h²) vᵢⱼ   laminar viscosity (Morris et al. 1997)
+//      − Σ_b Ψ_b (pᵢ/ρᵢ² + Πᵢ_b) ∇Wᵢ_b  + boundary viscosity      boundary (Akinci et al. 2012)
+//      + g + brush
+// with vᵢⱼ = vᵢ − vⱼ (so viscosity pulls vᵢ towards vⱼ) and Monaghan's artificial viscosity
+// Πᵢⱼ = −α c0 h (vᵢⱼ·rᵢⱼ) / (ρ̄ᵢⱼ (r² + 0.01h²)) for approaching pairs only.
+template <int D>
+void Wcsph<D>::compute_accelerations() {
+  const std::size_t n = fluid_.size();
+  const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
+  const Real eps = Real(0.01 * prm_.h * prm_.h);
+  const Real ach = Real(spec_.artificial_viscosity * prm_.c0 * prm_.h);
+  const Real nu = Real(spec_.viscosity);
+  const Real* fx[D];
+  const Real* fv[D];
+  const Real* bx[D];
+  const Real* bv[D];
+  for (int k = 0; k < D; ++k) {
+    fx[k] = fluid_.x[k].data(); fv[k] = fluid_.v[k].data();
+    bx[k] = boundary_.x[k].data(); bv[k] = boundary_.v[k].data();
+  }
+  const Real* psi = boundary_.psi.data();
+  const Real* rho = fluid_.rho.data();
+  const Real* P = ctx_.p_over_rho2.data();
+  const Real* inv_rho = ctx_.inv_rho.data();
+  const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
+  Real g[D];
+  for (int k = 0; k < D; ++k) g[k] = Real(spec_.gravity[k]);
+  const Brush brush = brush_;
+  const Vec<D> brush_c = truncate<D>(brush.center);
+
+  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        Real xi[D], vi[D];
+        for (int k = 0; k < D; ++k) { xi[k] = fx[k][i]; vi[k] = fv[k][i]; }
+        const Real rhoi = rho[i], Pi = P[i], iri = inv_rho[i];
+        f8 acc[D] = {};
+        for_each_candidate_batch<D>(
+            ctx_.fluid_grid, cells[i], fx, xi, support2, [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+              const f8 G = K.grad_factor(r2);  // ∇W = G · d
+              f8 vij[D], vr = f8{};
+              for (int k = 0; k < D; ++k) {
+                vij[k] = vi[k] - simd::load(fv[k] + j);
+                vr += vij[k] * d[k];
+              }
+              const f8 rhoj = simd::load(rho + j);
+              const f8 inv = 1.0f / (r2 + eps);
+              const f8 pi_visc = simd::select(vr < 0.0f, -ach * vr * inv * 2.0f / (rhoi + rhoj), f8{});
+              const f8 s = simd::select(m, -mass * (Pi + simd::load(P + j) + pi_visc) * G, f8{});
+              const f8 lam = simd::select(m, mass * nu * (iri + simd::load(inv_rho + j)) * G * r2 * inv, f8{});
+              for (int k = 0; k < D; ++k) acc[k] += s * d[k] + lam * vij[k];
+            });
+        // Boundary neighbours mirror the fluid particle's pressure and density (ρ_b = ρᵢ).
+        for_each_candidate_batch<D>(
+            ctx_.boundary_grid, cells[i], bx, xi, support2, [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+              const f8 G = K.grad_factor(r2);
+              f8 vib[D], vr = f8{};
+              for (int k = 0; k < D; ++k) {
+                vib[k] = vi[k] - simd::load(bv[k] + j);
+                vr += vib[k] * d[k];
+              }
+              const f8 w = simd::load(psi + j);
+              const f8 inv = 1.0f / (r2 + eps);
+              const f8 pi_visc = simd::select(vr < 0.0f, -ach * vr * inv * iri, f8{});
+              const f8 s = simd::select(m, -w * (Pi + pi_visc) * G, f8{});
+              const f8 lam = simd::select(m, w * nu * (2.0f * iri) * G * r2 * inv, f8{});
+              for (int k = 0; k < D; ++k) acc[k] += s * d[k] + lam * vib[k];
+            });
+        Real ai[D];
+        for (int k = 0; k < D; ++k) ai[k] = simd::hsum(acc[k]) + g[k];
+        if (brush.active) {
+          Vec<D> r;
+          for (int k = 0; k < D; ++k) r[k] = xi[k] - brush_c[k];
+          const Real dist = norm(r);
+          if (dist < brush.radius && dist > 0) {
+            const Real f = Real(brush.strength * (1.0 - dist / brush.radius)) / dist;
+            for (int k = 0; k < D; ++k) ai[k] += f * r[k];
+          }
+        }
+        for (int k = 0; k < D; ++k) fluid_.a[k][i] = ai[k];
+      }
+    });
+  });
+}
+
+// Ψ_b = ρ0 / Σ_k W_bk over the boundary particles of the same body (Akinci et al. 2012, eq. 4-5):
+// the volume a boundary particle represents, so sparse or dense sampling pushes equally hard.
+template <int D>
+void Wcsph<D>::compute_boundary_psi() {
+  const std::size_t n = boundary_.size();
+  const Real support2 = Real(prm_.support * prm_.support);
+  const Real* bx[D];
+  for (int k = 0; k < D; ++k) bx[k] = boundary_.x[k].data();
+  const int32_t* owner = boundary_.owner.data();
+  const double rho0 = prm_.rho0;
+  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        Vec<D> xi = boundary_.pos(i);
+        const uint32_t cell = ctx_.boundary_grid.sorted_cells()[i];
+        double sum = 0;
+        ctx_.boundary_grid.for_each_range(cell, [&](uint32_t lo, uint32_t hi) {
+          for (uint32_t j = lo; j < hi; ++j) {
+            if (owner[j] != owner[i]) continue;
+            Real r2 = 0;
+            for (int k = 0; k < D; ++k) r2 += (xi[k] - bx[k][j]) * (xi[k] - bx[k][j]);
+            if (r2 < support2) sum += K.value(r2);
+          }
+        });
+        boundary_.psi[i] = Real(rho0 / sum);
+      }
+    });
+  });
+}
+
+#define RTSPH_INSTANTIATE(D)                          \
+  template void Wcsph<D>::compute_density();          \
+  template void Wcsph<D>::compute_accelerations();    \
+  template void Wcsph<D>::compute_boundary_psi();
+RTSPH_INSTANTIATE(2)
+RTSPH_INSTANTIATE(3)
+#undef RTSPH_INSTANTIATE
+
+}  // namespace rtsph

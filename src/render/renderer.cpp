@@ -1,0 +1,633 @@
+#include "render/renderer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstring>
+#include <limits>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#include <stb/stb_easy_font.h>
+#pragma GCC diagnostic pop
+
+namespace rtsph::render {
+
+std::string_view color_mode_name(ColorMode m) {
+  switch (m) {
+    case ColorMode::Solid: return "solid";
+    case ColorMode::Speed: return "speed";
+    case ColorMode::Velocity: return "velocity";
+    case ColorMode::Pressure: return "pressure";
+    case ColorMode::Density: return "density";
+  }
+  return "solid";
+}
+
+bool parse_color_mode(std::string_view s, ColorMode* out) {
+  for (ColorMode m : {ColorMode::Solid, ColorMode::Speed, ColorMode::Velocity, ColorMode::Pressure,
+                      ColorMode::Density})
+    if (s == color_mode_name(m)) {
+      *out = m;
+      return true;
+    }
+  return false;
+}
+
+std::string_view display_mode_name(DisplayMode m) {
+  switch (m) {
+    case DisplayMode::Fluid: return "fluid";
+    case DisplayMode::FluidObstacles: return "obstacles";
+    case DisplayMode::All: return "all";
+  }
+  return "fluid";
+}
+
+bool parse_display_mode(std::string_view s, DisplayMode* out) {
+  for (DisplayMode m : {DisplayMode::Fluid, DisplayMode::FluidObstacles, DisplayMode::All})
+    if (s == display_mode_name(m)) {
+      *out = m;
+      return true;
+    }
+  return false;
+}
+
+namespace {
+
+constexpr int kLutSize = 256;
+
+float nice_step(float extent) {
+  float raw = std::max(extent, 1e-6f) / 10.0f;
+  float p = std::pow(10.0f, std::floor(std::log10(raw)));
+  float m = raw / p;
+  return (m < 1.5f ? 1.0f : m < 3.5f ? 2.0f : m < 7.5f ? 5.0f : 10.0f) * p;
+}
+
+std::string format_value(float v) {
+  if (v == 0) return "0";
+  return fmt::format("{:.4g}", v);
+}
+
+}  // namespace
+
+Renderer::Renderer()
+    : particles_({"particle.vert", "particle.frag"}),
+      lines_({"line.vert", "line.frag"}),
+      overlay_({"overlay.vert", "overlay.frag"}) {
+  glGenVertexArrays(1, &fluid_vao_);
+  glGenVertexArrays(1, &boundary_vao_);
+  glGenVertexArrays(1, &line_vao_);
+  glGenVertexArrays(1, &overlay_vao_);
+  glGenBuffers(1, &fluid_vbo_);
+  glGenBuffers(1, &boundary_vbo_);
+  glGenBuffers(1, &line_vbo_);
+  glGenBuffers(1, &overlay_vbo_);
+  glGenTextures(1, &lut_tex_);
+
+  glBindVertexArray(line_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, line_vbo_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 3, GL_FLOAT, GL_FALSE, sizeof(LineVertex), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(LineVertex),
+                        reinterpret_cast<void*>(offsetof(LineVertex, r)));
+
+  glBindVertexArray(overlay_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, overlay_vbo_);
+  glEnableVertexAttribArray(0);
+  glVertexAttribPointer(0, 2, GL_FLOAT, GL_FALSE, sizeof(OverlayVertex), nullptr);
+  glEnableVertexAttribArray(1);
+  glVertexAttribPointer(1, 4, GL_FLOAT, GL_FALSE, sizeof(OverlayVertex),
+                        reinterpret_cast<void*>(offsetof(OverlayVertex, r)));
+  glEnableVertexAttribArray(2);
+  glVertexAttribPointer(2, 1, GL_FLOAT, GL_FALSE, sizeof(OverlayVertex),
+                        reinterpret_cast<void*>(offsetof(OverlayVertex, lut)));
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  ensure_lut(ColorMap::Viridis);
+}
+
+Renderer::~Renderer() {
+  GLuint vaos[] = {fluid_vao_, boundary_vao_, line_vao_, overlay_vao_};
+  GLuint vbos[] = {fluid_vbo_, boundary_vbo_, line_vbo_, overlay_vbo_};
+  glDeleteVertexArrays(4, vaos);
+  glDeleteBuffers(4, vbos);
+  glDeleteTextures(1, &lut_tex_);
+}
+
+void Renderer::set_domain(int dim, const Vec3f& lo, const Vec3f& hi) {
+  dim_ = dim;
+  lo_ = lo;
+  hi_ = hi;
+  if (dim == 2) lo_.z = hi_.z = 0;
+  have_domain_ = true;
+}
+
+void Renderer::ensure_lut(ColorMap map) {
+  if (lut_map_ == static_cast<int>(map)) return;
+  auto data = colormap_lut(map, kLutSize);
+  glBindTexture(GL_TEXTURE_2D, lut_tex_);
+  glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+  glTexImage2D(GL_TEXTURE_2D, 0, GL_RGBA8, kLutSize, 1, 0, GL_RGBA, GL_UNSIGNED_BYTE, data.data());
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MIN_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_MAG_FILTER, GL_LINEAR);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
+  glTexParameteri(GL_TEXTURE_2D, GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+  glBindTexture(GL_TEXTURE_2D, 0);
+  lut_map_ = static_cast<int>(map);
+}
+
+void Renderer::upload(const ParticleView& f, const BoundaryView* b) {
+  if (!have_domain_) dim_ = f.dim;
+  const std::size_t n = f.x[0] && f.x[1] ? f.count : 0;
+  fluid_n_ = n;
+
+  // Value ranges for the legend and auto colouring: one pass over the arrays.
+  float vmax2 = 0;
+  float pmin = std::numeric_limits<float>::max(), pmax = std::numeric_limits<float>::lowest();
+  float rmin = pmin, rmax = pmax;
+  const int vd = f.v[2] && f.dim == 3 ? 3 : 2;
+  if (f.v[0] && f.v[1]) {
+    for (std::size_t i = 0; i < n; ++i) {
+      float s2 = f.v[0][i] * f.v[0][i] + f.v[1][i] * f.v[1][i];
+      if (vd == 3) s2 += f.v[2][i] * f.v[2][i];
+      vmax2 = std::max(vmax2, s2);
+    }
+  }
+  if (f.pressure)
+    for (std::size_t i = 0; i < n; ++i) {
+      pmin = std::min(pmin, f.pressure[i]);
+      pmax = std::max(pmax, f.pressure[i]);
+    }
+  if (f.density)
+    for (std::size_t i = 0; i < n; ++i) {
+      rmin = std::min(rmin, f.density[i]);
+      rmax = std::max(rmax, f.density[i]);
+    }
+  max_speed_ = std::sqrt(vmax2);
+  if (!f.pressure || n == 0) pmin = pmax = 0;
+  if (!f.density || n == 0) rmin = rmax = 0;
+  p_min_ = pmin;
+  p_max_ = pmax;
+  rho_min_ = rmin;
+  rho_max_ = rmax;
+
+  // Fluid: the present arrays packed one after another in one buffer (orphaned each frame).
+  const float* arrays[8] = {f.x[0], f.x[1], f.dim == 3 ? f.x[2] : nullptr,
+                            f.v[0], f.v[1], f.dim == 3 ? f.v[2] : nullptr,
+                            f.density, f.pressure};
+  int present = 0;
+  for (const float* a : arrays) present += a ? 1 : 0;
+  const GLsizeiptr bytes = static_cast<GLsizeiptr>(n * sizeof(float));
+  glBindVertexArray(fluid_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, fluid_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, std::max<GLsizeiptr>(bytes * present, 4), nullptr, GL_STREAM_DRAW);
+  GLintptr offset = 0;
+  for (GLuint i = 0; i < 8; ++i) {
+    if (arrays[i] && n > 0) {
+      glBufferSubData(GL_ARRAY_BUFFER, offset, bytes, arrays[i]);
+      glVertexAttribPointer(i, 1, GL_FLOAT, GL_FALSE, 0, reinterpret_cast<void*>(offset));
+      glVertexAttribDivisor(i, 1);
+      glEnableVertexAttribArray(i);
+      offset += bytes;
+    } else {
+      glDisableVertexAttribArray(i);
+    }
+  }
+
+  // Boundary: obstacles first, then walls, so each group is one contiguous instance range.
+  obstacle_n_ = wall_n_ = 0;
+  glBindVertexArray(boundary_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, boundary_vbo_);
+  const std::size_t nb = b && b->x[0] && b->x[1] && b->owner ? b->count : 0;
+  if (nb > 0) {
+    const int bd = b->dim == 3 && b->x[2] ? 3 : 2;
+    scratch_.resize(nb * 3);
+    std::size_t obst = 0;
+    for (std::size_t i = 0; i < nb; ++i) obst += b->owner[i] >= 0 ? 1 : 0;
+    std::size_t io = 0, iw = obst;
+    for (std::size_t i = 0; i < nb; ++i) {
+      std::size_t j = b->owner[i] >= 0 ? io++ : iw++;
+      scratch_[j] = b->x[0][i];
+      scratch_[nb + j] = b->x[1][i];
+      scratch_[2 * nb + j] = bd == 3 ? b->x[2][i] : 0.0f;
+    }
+    obstacle_n_ = obst;
+    wall_n_ = nb - obst;
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(scratch_.size() * sizeof(float)),
+                 scratch_.data(), GL_STREAM_DRAW);
+    for (GLuint i = 0; i < 3; ++i) {
+      glVertexAttribPointer(i, 1, GL_FLOAT, GL_FALSE, 0,
+                            reinterpret_cast<void*>(i * nb * sizeof(float)));
+      glVertexAttribDivisor(i, 1);
+      glEnableVertexAttribArray(i);
+    }
+  }
+  for (GLuint i = nb > 0 ? 3 : 0; i < 8; ++i) glDisableVertexAttribArray(i);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+
+  if (!have_domain_ && n > 0) {
+    Vec3f lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(), 0};
+    Vec3f hi{std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest(), 0};
+    for (std::size_t i = 0; i < n; ++i) {
+      lo.x = std::min(lo.x, f.x[0][i]); hi.x = std::max(hi.x, f.x[0][i]);
+      lo.y = std::min(lo.y, f.x[1][i]); hi.y = std::max(hi.y, f.x[1][i]);
+    }
+    if (f.dim == 3 && f.x[2]) {
+      lo.z = std::numeric_limits<float>::max();
+      hi.z = std::numeric_limits<float>::lowest();
+      for (std::size_t i = 0; i < n; ++i) {
+        lo.z = std::min(lo.z, f.x[2][i]);
+        hi.z = std::max(hi.z, f.x[2][i]);
+      }
+    }
+    lo_ = lo;
+    hi_ = hi;
+  }
+}
+
+std::pair<float, float> Renderer::data_range(ColorMode m) const {
+  switch (m) {
+    case ColorMode::Speed:
+    case ColorMode::Velocity: return {0.0f, max_speed_};
+    case ColorMode::Pressure: return {p_min_, p_max_};
+    case ColorMode::Density: return {rho_min_, rho_max_};
+    case ColorMode::Solid: break;
+  }
+  return {0.0f, 1.0f};
+}
+
+std::pair<float, float> Renderer::color_range(const RenderSettings& s) const {
+  auto r = s.auto_range ? data_range(s.color) : std::pair<float, float>{s.range_min, s.range_max};
+  if (!(r.second > r.first)) {
+    // A constant field: centre it so it shows the middle of the map rather than one end.
+    float pad = std::max(std::fabs(r.first) * 1e-3f, 1e-6f);
+    r = {r.first - pad, r.first + pad};
+  }
+  return r;
+}
+
+LegendLayout Renderer::legend_layout(int width, int height, const RenderSettings& s) const {
+  LegendLayout L;
+  if (!s.legend || s.color == ColorMode::Solid) return L;
+  const float scale = s.ui_scale > 0 ? s.ui_scale : (height >= 600 ? 2.0f : 1.0f);
+  const float margin = 10 * scale, bar_w = 12 * scale, title_h = 12 * scale;
+  float bar_h = std::clamp(0.45f * static_cast<float>(height), 16.0f, 240.0f * scale);
+  L.shown = true;
+  L.x1 = static_cast<float>(width) - margin;
+  L.x0 = L.x1 - bar_w;
+  L.y0 = margin + title_h;
+  L.y1 = L.y0 + bar_h;
+  auto r = color_range(s);
+  L.vmin = r.first;
+  L.vmax = r.second;
+  switch (s.color) {
+    case ColorMode::Speed: L.title = "speed m/s"; break;
+    case ColorMode::Velocity: L.title = dim_ == 3 ? "velocity: rgb=dir" : "velocity: hue=dir"; break;
+    case ColorMode::Pressure: L.title = "pressure Pa"; break;
+    case ColorMode::Density: L.title = "density kg/m3"; break;
+    case ColorMode::Solid: break;
+  }
+  return L;
+}
+
+void Renderer::build_legend(int width, int height, const RenderSettings& s,
+                            std::vector<OverlayVertex>* out) const {
+  LegendLayout L = legend_layout(width, height, s);
+  if (!L.shown) return;
+  const float scale = s.ui_scale > 0 ? s.ui_scale : (height >= 600 ? 2.0f : 1.0f);
+  auto quad = [&](float x0, float y0, float x1, float y1, Rgb c, float a, float t0, float t1) {
+    OverlayVertex v00{x0, y0, c.r, c.g, c.b, a, t0}, v10{x1, y0, c.r, c.g, c.b, a, t0};
+    OverlayVertex v01{x0, y1, c.r, c.g, c.b, a, t1}, v11{x1, y1, c.r, c.g, c.b, a, t1};
+    out->insert(out->end(), {v00, v10, v11, v00, v11, v01});
+  };
+  auto text_width = [&](const std::string& t) {
+    return static_cast<float>(stb_easy_font_width(const_cast<char*>(t.c_str()))) * scale;
+  };
+  auto text = [&](float x, float y, const std::string& t) {
+    static thread_local std::vector<char> buf(64 * 1024);
+    int quads = stb_easy_font_print(0, 0, const_cast<char*>(t.c_str()), nullptr, buf.data(),
+                                    static_cast<int>(buf.size()));
+    struct V { float x, y, z; unsigned char c[4]; };
+    const V* v = reinterpret_cast<const V*>(buf.data());
+    for (int q = 0; q < quads; ++q) {
+      const V* k = v + 4 * q;
+      OverlayVertex o[4];
+      for (int i = 0; i < 4; ++i) o[i] = {x + k[i].x * scale, y + k[i].y * scale, 0.93f, 0.94f, 0.96f, 1.0f, -1.0f};
+      out->insert(out->end(), {o[0], o[1], o[2], o[0], o[2], o[3]});
+    }
+  };
+  std::string top = format_value(L.vmax), bottom = format_value(L.vmin);
+  std::string mid = format_value(0.5f * (L.vmin + L.vmax));
+  float label_w = std::max({text_width(top), text_width(bottom), text_width(mid)});
+  float pad = 4 * scale;
+  float panel_x0 = std::min(L.x0 - label_w - 2 * pad, L.x1 - text_width(L.title)) - pad;
+  quad(panel_x0, L.y0 - 12 * scale - pad, L.x1 + pad, L.y1 + pad, {0.0f, 0.0f, 0.0f}, 0.45f, -1, -1);
+  if (s.color == ColorMode::Velocity) {
+    // Hue wheel (2D) or grey → saturated (3D, the speed axis of the direction colouring).
+    const int seg = 24;
+    for (int i = 0; i < seg; ++i) {
+      float t0 = 1.0f - static_cast<float>(i) / seg, t1 = 1.0f - static_cast<float>(i + 1) / seg;
+      float y0 = L.y0 + (L.y1 - L.y0) * i / seg, y1 = L.y0 + (L.y1 - L.y0) * (i + 1) / seg;
+      auto col = [&](float t) {
+        if (dim_ == 3) return Rgb{0.5f + 0.5f * t, 0.5f, 0.5f};
+        float h = t * 6.0f;
+        auto ch = [&](float o) { return std::clamp(std::fabs(std::fmod(h + o, 6.0f) - 3.0f) - 1.0f, 0.0f, 1.0f); };
+        return Rgb{ch(0), ch(4), ch(2)};
+      };
+      Rgb c0 = col(t0), c1 = col(t1);
+      OverlayVertex a{L.x0, y0, c0.r, c0.g, c0.b, 1, -1}, b{L.x1, y0, c0.r, c0.g, c0.b, 1, -1};
+      OverlayVertex c{L.x1, y1, c1.r, c1.g, c1.b, 1, -1}, d{L.x0, y1, c1.r, c1.g, c1.b, 1, -1};
+      out->insert(out->end(), {a, b, c, a, c, d});
+    }
+    if (dim_ == 2) {
+      top = std::string("180 deg");
+      mid = std::string("0");
+      bottom = std::string("-180 deg");
+    }
+  } else {
+    quad(L.x0, L.y0, L.x1, L.y1, {1, 1, 1}, 1.0f, 1.0f, 0.0f);
+  }
+  const float th = 8 * scale;  // stb_easy_font glyphs are ~7 units tall
+  text(L.x1 - text_width(L.title), L.y0 - 11 * scale, L.title);
+  text(L.x0 - pad - text_width(top), L.y0, top);
+  text(L.x0 - pad - text_width(mid), 0.5f * (L.y0 + L.y1) - 0.5f * th, mid);
+  text(L.x0 - pad - text_width(bottom), L.y1 - th, bottom);
+}
+
+void Renderer::draw_lines(const std::vector<LineVertex>& v, GLenum mode, const Mat4& mvp) {
+  if (v.empty()) return;
+  lines_.use();
+  glUniformMatrix4fv(lines_.loc("u_mvp"), 1, GL_FALSE, mvp.data());
+  glBindVertexArray(line_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, line_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(LineVertex)), v.data(),
+               GL_STREAM_DRAW);
+  glDrawArrays(mode, 0, static_cast<GLsizei>(v.size()));
+}
+
+void Renderer::draw_overlay(const std::vector<OverlayVertex>& v, int width, int height) {
+  if (v.empty()) return;
+  overlay_.use();
+  glUniform2f(overlay_.loc("u_viewport"), static_cast<float>(width), static_cast<float>(height));
+  glUniform1i(overlay_.loc("u_lut"), 0);
+  glBindVertexArray(overlay_vao_);
+  glBindBuffer(GL_ARRAY_BUFFER, overlay_vbo_);
+  glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(OverlayVertex)),
+               v.data(), GL_STREAM_DRAW);
+  glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(v.size()));
+}
+
+void Renderer::set_particle_uniforms(const Camera& cam, const Mat4& view, const Mat4& proj,
+                                     float radius, int color_mode, const Rgb& solid,
+                                     std::pair<float, float> range) {
+  glUniformMatrix4fv(particles_.loc("u_view"), 1, GL_FALSE, view.data());
+  glUniformMatrix4fv(particles_.loc("u_proj"), 1, GL_FALSE, proj.data());
+  glUniform1f(particles_.loc("u_radius"), radius);
+  glUniform1i(particles_.loc("u_dim"), dim_);
+  glUniform1i(particles_.loc("u_ortho"), cam.dim == 2 ? 1 : 0);
+  glUniform1i(particles_.loc("u_color_mode"), color_mode);
+  glUniform2f(particles_.loc("u_range"), range.first, range.second);
+  glUniform3f(particles_.loc("u_solid"), solid.r, solid.g, solid.b);
+  glUniform1i(particles_.loc("u_lut"), 0);
+}
+
+DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderSettings& s) {
+  DrawStats st;
+  width = std::max(width, 1);
+  height = std::max(height, 1);
+  glViewport(0, 0, width, height);
+  glClearColor(s.background.r, s.background.g, s.background.b, 1.0f);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  ensure_lut(s.map);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, lut_tex_);
+  for (GLuint i = 0; i < 8; ++i) glVertexAttrib4f(i, 0, 0, 0, 1);
+
+  const float aspect = static_cast<float>(width) / static_cast<float>(height);
+  const Mat4 view = cam.view(), proj = cam.projection(aspect), vp = proj * view;
+  const bool three = dim_ == 3;
+  glDisable(GL_CULL_FACE);
+  glDisable(GL_SCISSOR_TEST);
+  glEnable(GL_BLEND);
+  // Destination alpha stays 1 so that saved frames are opaque.
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  if (three) {
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+  } else {
+    glDisable(GL_DEPTH_TEST);
+  }
+  const Vec3f size = hi_ - lo_;
+  const float extent = std::max({size.x, size.y, three ? size.z : 0.0f, 1e-3f});
+
+  // Ground grid (3D: the floor plane, 2D: behind the particles) and, in 2D, the walls.
+  std::vector<LineVertex> lv;
+  if (s.grid) {
+    const float step = nice_step(extent);
+    const LineVertex base{0, 0, 0, 0.55f, 0.57f, 0.62f, three ? 0.35f : 0.18f};
+    if (three) {
+      const float cx = 0.5f * (lo_.x + hi_.x), cz = 0.5f * (lo_.z + hi_.z);
+      const float half = std::ceil(1.5f * extent / step) * step;
+      const float x0 = std::floor((cx - half) / step) * step, z0 = std::floor((cz - half) / step) * step;
+      const int lines = static_cast<int>(std::lround(2 * half / step)) + 1;
+      const float y = lo_.y - 1e-4f * extent;
+      for (int i = 0; i <= lines; ++i) {
+        float x = x0 + i * step, z = z0 + i * step;
+        LineVertex a = base, b = base;
+        a.x = x; a.y = y; a.z = z0; b.x = x; b.y = y; b.z = z0 + lines * step;
+        lv.push_back(a); lv.push_back(b);
+        a.x = x0; a.z = z; b.x = x0 + lines * step; b.z = z;
+        lv.push_back(a); lv.push_back(b);
+      }
+    } else {
+      const float x0 = std::floor(lo_.x / step) * step, x1 = std::ceil(hi_.x / step) * step;
+      const float y0 = std::floor(lo_.y / step) * step, y1 = std::ceil(hi_.y / step) * step;
+      for (float x = x0; x <= x1 + 0.5f * step; x += step) {
+        LineVertex a = base, b = base;
+        a.x = b.x = x; a.y = y0; b.y = y1;
+        lv.push_back(a); lv.push_back(b);
+      }
+      for (float y = y0; y <= y1 + 0.5f * step; y += step) {
+        LineVertex a = base, b = base;
+        a.y = b.y = y; a.x = x0; b.x = x1;
+        lv.push_back(a); lv.push_back(b);
+      }
+    }
+  }
+  if (!lv.empty()) {
+    glDepthMask(GL_FALSE);
+    draw_lines(lv, GL_LINES, vp);
+    glDepthMask(GL_TRUE);
+    ++st.draw_calls;
+  }
+  if (!three && s.walls) {
+    // 2D walls: a translucent band around the domain.
+    const float t = std::max(2.0f * s.particle_radius, 0.01f * extent);
+    const LineVertex c{0, 0, 0, 0.55f, 0.6f, 0.68f, 0.55f};
+    std::vector<LineVertex> tri;
+    auto rect = [&](float ax, float ay, float bx, float by) {
+      LineVertex p[4] = {c, c, c, c};
+      p[0].x = ax; p[0].y = ay; p[1].x = bx; p[1].y = ay;
+      p[2].x = bx; p[2].y = by; p[3].x = ax; p[3].y = by;
+      tri.insert(tri.end(), {p[0], p[1], p[2], p[0], p[2], p[3]});
+    };
+    rect(lo_.x - t, lo_.y - t, hi_.x + t, lo_.y);
+    rect(lo_.x - t, hi_.y, hi_.x + t, hi_.y + t);
+    rect(lo_.x - t, lo_.y, lo_.x, hi_.y);
+    rect(hi_.x, lo_.y, hi_.x + t, hi_.y);
+    draw_lines(tri, GL_TRIANGLES, vp);
+    ++st.draw_calls;
+  }
+
+  // Particles: one instanced draw for the fluid, one per visible boundary group.
+  particles_.use();
+  const float br = s.boundary_radius > 0 ? s.boundary_radius : s.particle_radius;
+  if (fluid_n_ > 0) {
+    set_particle_uniforms(cam, view, proj, s.particle_radius, static_cast<int>(s.color), s.water,
+                          color_range(s));
+    glBindVertexArray(fluid_vao_);
+    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(fluid_n_));
+    ++st.draw_calls;
+    st.particles_drawn += fluid_n_;
+  }
+  if (s.display != DisplayMode::Fluid && obstacle_n_ > 0) {
+    set_particle_uniforms(cam, view, proj, br, 0, s.obstacle, {0.0f, 1.0f});
+    glBindVertexArray(boundary_vao_);
+    glDrawArraysInstancedBaseInstance(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(obstacle_n_), 0);
+    ++st.draw_calls;
+    st.particles_drawn += obstacle_n_;
+  }
+  if (s.display == DisplayMode::All && wall_n_ > 0) {
+    set_particle_uniforms(cam, view, proj, br, 0, s.wall_particles, {0.0f, 1.0f});
+    glBindVertexArray(boundary_vao_);
+    glDrawArraysInstancedBaseInstance(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(wall_n_),
+                                      static_cast<GLuint>(obstacle_n_));
+    ++st.draw_calls;
+    st.particles_drawn += wall_n_;
+  }
+
+  // 3D container: translucent faces on the far side of the box (those the eye sees from the
+  // inside) and the twelve edges, depth-tested against the particles, not writing depth.
+  if (three && s.walls) {
+    const Vec3f eye = cam.eye();
+    std::vector<LineVertex> faces, edges;
+    const LineVertex fc{0, 0, 0, 0.62f, 0.72f, 0.85f, 0.10f};
+    const LineVertex ec{0, 0, 0, 0.70f, 0.75f, 0.82f, 0.55f};
+    auto corner = [&](int bits) {
+      return Vec3f{bits & 1 ? hi_.x : lo_.x, bits & 2 ? hi_.y : lo_.y, bits & 4 ? hi_.z : lo_.z};
+    };
+    for (int axis = 0; axis < 3; ++axis)
+      for (int side = 0; side < 2; ++side) {
+        const float plane = side ? hi_[axis] : lo_[axis];
+        const float e = eye[axis];
+        const bool inside_sees = side ? e < plane : e > plane;
+        if (!inside_sees) continue;
+        const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+        int b[4];
+        const int pairs[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
+        for (int k = 0; k < 4; ++k)
+          b[k] = (side << axis) | (pairs[k][0] << a1) | (pairs[k][1] << a2);
+        LineVertex q[4];
+        for (int k = 0; k < 4; ++k) {
+          Vec3f p = corner(b[k]);
+          q[k] = fc;
+          q[k].x = p.x; q[k].y = p.y; q[k].z = p.z;
+        }
+        faces.insert(faces.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+      }
+    for (int i = 0; i < 8; ++i)
+      for (int axis = 0; axis < 3; ++axis)
+        if (!(i & (1 << axis))) {
+          Vec3f p = corner(i), r = corner(i | (1 << axis));
+          LineVertex a = ec, b = ec;
+          a.x = p.x; a.y = p.y; a.z = p.z;
+          b.x = r.x; b.y = r.y; b.z = r.z;
+          edges.push_back(a);
+          edges.push_back(b);
+        }
+    glDepthMask(GL_FALSE);
+    draw_lines(faces, GL_TRIANGLES, vp);
+    draw_lines(edges, GL_LINES, vp);
+    glDepthMask(GL_TRUE);
+    st.draw_calls += 2;
+  }
+
+  // Legend, in pixels on top of everything.
+  glDisable(GL_DEPTH_TEST);
+  std::vector<OverlayVertex> ov;
+  build_legend(width, height, s, &ov);
+  if (!ov.empty()) {
+    draw_overlay(ov, width, height);
+    ++st.draw_calls;
+  }
+
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glUseProgram(0);
+  glDisable(GL_BLEND);
+  return st;
+}
+
+OffscreenTarget::OffscreenTarget(int width, int height) : w_(width), h_(height) {
+  glGenFramebuffers(1, &fbo_);
+  glGenRenderbuffers(1, &color_);
+  glGenRenderbuffers(1, &depth_);
+  glBindRenderbuffer(GL_RENDERBUFFER, color_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
+  glBindRenderbuffer(GL_RENDERBUFFER, depth_);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
+  GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
+  glBindRenderbuffer(GL_RENDERBUFFER, 0);
+  if (status != GL_FRAMEBUFFER_COMPLETE) {
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    throw std::runtime_error(fmt::format("framebuffer {}x{} incomplete (0x{:x})", width, height,
+                                         static_cast<unsigned>(status)));
+  }
+}
+
+OffscreenTarget::~OffscreenTarget() {
+  glDeleteFramebuffers(1, &fbo_);
+  glDeleteRenderbuffers(1, &color_);
+  glDeleteRenderbuffers(1, &depth_);
+}
+
+void OffscreenTarget::bind() const {
+  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
+  glViewport(0, 0, w_, h_);
+}
+
+std::vector<unsigned char> OffscreenTarget::read_rgba() const {
+  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
+  return read_framebuffer(w_, h_);
+}
+
+std::vector<unsigned char> read_framebuffer(int width, int height) {
+  std::vector<unsigned char> px(static_cast<std::size_t>(width) * height * 4);
+  glPixelStorei(GL_PACK_ALIGNMENT, 1);
+  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
+  // GL's first row is the bottom one.
+  const std::size_t row = static_cast<std::size_t>(width) * 4;
+  std::vector<unsigned char> tmp(row);
+  for (int y = 0; y < height / 2; ++y) {
+    unsigned char* a = px.data() + y * row;
+    unsigned char* b = px.data() + (height - 1 - y) * row;
+    std::memcpy(tmp.data(), a, row);
+    std::memcpy(a, b, row);
+    std::memcpy(b, tmp.data(), row);
+  }
+  return px;
+}
+
+}  // namespace rtsph::render

@@ -214,7 +214,7 @@ void check_round_trip(const fs::path& dir, int dim, std::uint32_t id_stride) {
   EXPECT_EQ(vel.components, 3);
   EXPECT_EQ(vtp.arrays["id"].type, "UInt32");
   EXPECT_EQ(vtp.arrays["connectivity"].section, "Verts");
-  EXPECT_EQ(vtp.arrays["offsets"].type, "Int64");
+  EXPECT_EQ(vtp.arrays["offsets"].type, "Int32");
   auto order = f.by_id();
   for (std::size_t j = 0; j < n; ++j) {
     const auto i = order[j];
@@ -226,8 +226,8 @@ void check_round_trip(const fs::path& dir, int dim, std::uint32_t id_stride) {
     expect_bits(vtp.arrays["density"].at<float>(j), f.rho[i], at + " density");
     expect_bits(vtp.arrays["pressure"].at<float>(j), f.p[i], at + " pressure");
     EXPECT_EQ(vtp.arrays["id"].at<std::uint32_t>(j), f.id[i]) << at;
-    EXPECT_EQ(vtp.arrays["connectivity"].at<std::int64_t>(j), static_cast<std::int64_t>(j));
-    EXPECT_EQ(vtp.arrays["offsets"].at<std::int64_t>(j), static_cast<std::int64_t>(j + 1));
+    EXPECT_EQ(vtp.arrays["connectivity"].at<std::int32_t>(j), static_cast<std::int32_t>(j));
+    EXPECT_EQ(vtp.arrays["offsets"].at<std::int32_t>(j), static_cast<std::int32_t>(j + 1));
   }
 }
 

@@ -1,5 +1,7 @@
 // CSV: one row per fluid particle, in id order. The all-attributes header is fixed by the
 // foundation spec (x,y[,z],vx,vy[,vz],density,pressure), so there is no id column.
+#include <charconv>
+
 #include <fmt/format.h>
 
 #include "io/atomic_file.h"
@@ -38,11 +40,14 @@ class CsvExporter final : public Exporter {
     if (options_.density) column("density", view.density);
     if (options_.pressure) column("pressure", view.pressure);
     buf.push_back('\n');
+    char text[32];
     for (auto i : id_order(view)) {
-      // {} on a float is the shortest text that reads back as the same float.
       for (std::size_t c = 0; c < cols.size(); ++c) {
         if (c) buf.push_back(',');
-        fmt::format_to(out, "{}", cols[c][i]);
+        // Shortest text that reads back as the same float; to_chars is several times faster
+        // than fmt here, which matters at millions of values per frame.
+        auto end = std::to_chars(text, text + sizeof text, cols[c][i]).ptr;
+        buf.append(text, end);
       }
       buf.push_back('\n');
       if (buf.size() > (1u << 20)) {

@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <functional>
+#include <limits>
 
 #include "io/atomic_file.h"
 #include "io/binary_out.h"
@@ -38,6 +39,9 @@ class VtkExporter final : public Exporter {
 
   void write_frame(int frame, double time_s, const ParticleView& view) override {
     check_view(view, options_);
+    if (view.count > static_cast<std::size_t>(std::numeric_limits<std::int32_t>::max())) {
+      throw IoError(fmt::format("vtk: {} particles exceed the Int32 cell arrays", view.count));
+    }
     const auto name = frame_file_name(frame, "vtp");
     write_file_atomic(index_.dir() / name, [&](std::ostream& os) { write_vtp(os, view); });
     index_.add(frame, time_s, name);
@@ -66,10 +70,11 @@ class VtkExporter final : public Exporter {
                    gathered<std::uint32_t>(n, [&order, &view](std::size_t j) { return view.id[order[j]]; })});
     }
     a.push_back({"Points", "Float32", "Points", 3, 12 * n, vec3(view.x)});
-    a.push_back({"Verts", "Int64", "connectivity", 1, 8 * n,
-                 gathered<std::int64_t>(n, [](std::size_t j) { return static_cast<std::int64_t>(j); })});
-    a.push_back({"Verts", "Int64", "offsets", 1, 8 * n,
-                 gathered<std::int64_t>(n, [](std::size_t j) { return static_cast<std::int64_t>(j + 1); })});
+    // Int32 cell arrays: ids are 32-bit anyway, and Int64 would add 16 bytes per particle.
+    a.push_back({"Verts", "Int32", "connectivity", 1, 4 * n,
+                 gathered<std::int32_t>(n, [](std::size_t j) { return static_cast<std::int32_t>(j); })});
+    a.push_back({"Verts", "Int32", "offsets", 1, 4 * n,
+                 gathered<std::int32_t>(n, [](std::size_t j) { return static_cast<std::int32_t>(j + 1); })});
     return a;
   }
 

@@ -34,7 +34,7 @@ def check_vtp(path):
     base = len(head) + len('<AppendedData encoding="raw">') + rest.index(b"_") + 1
     n = int(re.search(rb'NumberOfPoints="(\d+)"', head).group(1))
     for m in re.finditer(rb'<DataArray type="(\w+)" Name="(\w+)"(?: NumberOfComponents="(\d)")? format="appended" offset="(\d+)"', head):
-        size = {b"Float32": 4, b"UInt32": 4, b"Int64": 8}[m.group(1)]
+        size = {b"Float32": 4, b"UInt32": 4, b"Int32": 4}[m.group(1)]
         comps = int(m.group(3) or 1)
         at = base + int(m.group(4))
         (nbytes,) = struct.unpack_from("<Q", data, at)

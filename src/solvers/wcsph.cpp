@@ -130,6 +130,7 @@ void Wcsph<D>::update_forces() {
     ScopedTimer timer(times_.density_s);
     compute_density();     // ρᵢ = Σⱼ mⱼ Wᵢⱼ + Σ_b Ψ_b W_ib (Akinci et al. 2012, eq. 6)
     compute_pressure();    // Tait (Becker & Teschner 2007) or the linear law p = k(ρ - ρ0)
+    extrapolate_boundary_pressure();  // wall pressure from the fluid (Adami et al. 2012, eq. 27)
   }
   {
     ScopedTimer timer(times_.forces_s);
@@ -194,13 +195,13 @@ void Wcsph<D>::drift(double dt) {
 
 template <int D>
 void Wcsph<D>::put_back_escaped() {
-  // A particle outside the container is returned a quarter spacing inside and loses its
-  // outward velocity. NaN positions fail both comparisons and are put back too.
+  // A particle that crossed a container wall is returned a quarter spacing inside and loses
+  // its outward velocity. NaN positions fail both comparisons and are put back too.
   const Real margin = Real(0.25 * spec_.spacing);
   Real lo[D], hi[D];
   for (int k = 0; k < D; ++k) {
-    lo[k] = Real(prm_.domain_min[k]) + margin;
-    hi[k] = Real(prm_.domain_max[k]) - margin;
+    lo[k] = Real(prm_.domain_min[k]);
+    hi[k] = Real(prm_.domain_max[k]);
   }
   put_back_ += pool_.parallel_reduce(fluid_.size(), std::uint64_t(0), [&](std::size_t b, std::size_t e) {
     std::uint64_t count = 0;
@@ -209,8 +210,8 @@ void Wcsph<D>::put_back_escaped() {
       for (int k = 0; k < D; ++k) {
         Real& x = fluid_.x[k][i];
         Real& v = fluid_.v[k][i];
-        if (!(x >= lo[k])) { x = lo[k]; v = std::max(v, Real(0)); moved = true; }
-        else if (!(x <= hi[k])) { x = hi[k]; v = std::min(v, Real(0)); moved = true; }
+        if (!(x >= lo[k])) { x = lo[k] + margin; v = std::max(v, Real(0)); moved = true; }
+        else if (!(x <= hi[k])) { x = hi[k] - margin; v = std::min(v, Real(0)); moved = true; }
         if (!std::isfinite(v)) v = 0;
       }
       count += moved;

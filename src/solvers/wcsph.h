@@ -26,10 +26,11 @@ struct StepContext {
   UniformGrid<D> fluid_grid, boundary_grid;
   AlignedArray<Real> p_over_rho2;  // pᵢ/ρᵢ², symmetric pressure term
   AlignedArray<Real> inv_rho;      // 1/ρᵢ, Morris viscosity
+  AlignedArray<Real> boundary_p_over_rho2;  // p_b/ρ0² extrapolated from the fluid (Adami 2012)
   AlignedArray<Real> tmp;          // permutation scratch
   std::size_t bytes() const {
     return fluid_grid.bytes() + boundary_grid.bytes() + p_over_rho2.bytes() + inv_rho.bytes() +
-           tmp.bytes();
+           boundary_p_over_rho2.bytes() + tmp.bytes();
   }
 };
 
@@ -82,6 +83,7 @@ class Wcsph final : public Simulation {
   void sort_boundary_by_cell();
   void compute_density();
   void compute_pressure();
+  void extrapolate_boundary_pressure();
   void compute_accelerations();
 
   // Setup.

@@ -43,7 +43,9 @@ void Wcsph<D>::compute_density() {
 
 // aᵢ = −Σⱼ mⱼ (pᵢ/ρᵢ² + pⱼ/ρⱼ² + Πᵢⱼ) ∇Wᵢⱼ                      symmetric pressure (Monaghan 1992)
 //      + Σⱼ mⱼ ν (1/ρᵢ + 1/ρⱼ) (rᵢⱼ·∇Wᵢⱼ)/(r² + 0.01h²) vᵢⱼ   laminar viscosity (Morris et al. 1997)
-//      − Σ_b Ψ_b (pᵢ/ρᵢ² + Πᵢ_b) ∇Wᵢ_b  + boundary viscosity      boundary (Akinci et al. 2012)
+//      − Σ_b Ψ_b (pᵢ/ρᵢ² + p_b/ρ0² + Πᵢ_b) ∇Wᵢ_b + viscosity      boundary particles of Akinci
+//        et al. 2012 with the wall pressure p_b of Adami et al. 2012, so the fluid next to a
+//        wall carries the hydrostatic pressure instead of twice it (Akinci's p_b = 0 form)
 //      + g + brush
 // with vᵢⱼ = vᵢ − vⱼ (so viscosity pulls vᵢ towards vⱼ) and Monaghan's artificial viscosity
 // Πᵢⱼ = −α c0 h (vᵢⱼ·rᵢⱼ) / (ρ̄ᵢⱼ (r² + 0.01h²)) for approaching pairs only.
@@ -63,6 +65,7 @@ void Wcsph<D>::compute_accelerations() {
     bx[k] = boundary_.x[k].data(); bv[k] = boundary_.v[k].data();
   }
   const Real* psi = boundary_.psi.data();
+  const Real* Pb = ctx_.boundary_p_over_rho2.data();
   const Real* rho = fluid_.rho.data();
   const Real* P = ctx_.p_over_rho2.data();
   const Real* inv_rho = ctx_.inv_rho.data();
@@ -106,7 +109,7 @@ void Wcsph<D>::compute_accelerations() {
               const f8 w = simd::load(psi + j);
               const f8 inv = 1.0f / (r2 + eps);
               const f8 pi_visc = simd::select(vr < 0.0f, -ach * vr * inv * iri, f8{});
-              const f8 s = simd::select(m, -w * (Pi + pi_visc) * G, f8{});
+              const f8 s = simd::select(m, -w * (Pi + simd::load(Pb + j) + pi_visc) * G, f8{});
               const f8 lam = simd::select(m, w * nu * (2.0f * iri) * G * r2 * inv, f8{});
               for (int k = 0; k < D; ++k) acc[k] += s * d[k] + lam * vib[k];
             });
@@ -127,8 +130,87 @@ void Wcsph<D>::compute_accelerations() {
   });
 }
 
-// Ψ_b = ρ0 / Σ_k W_bk over the boundary particles of the same body (Akinci et al. 2012, eq. 4-5):
-// the volume a boundary particle represents, so sparse or dense sampling pushes equally hard.
+// p_b = (Σ_f p_f W_bf + (g − a_b)·Σ_f ρ_f (x_b − x_f) W_bf) / Σ_f W_bf   (Adami et al. 2012)
+// a_b (the wall's acceleration) is neglected: obstacles move at prescribed, slowly varying speed.
+template <int D>
+void Wcsph<D>::extrapolate_boundary_pressure() {
+  const std::size_t n = boundary_.size();
+  ctx_.boundary_p_over_rho2.resize(n);
+  const Real support2 = Real(prm_.support * prm_.support);
+  const Real inv_rho02 = Real(1.0 / (prm_.rho0 * prm_.rho0));
+  const bool clamp = spec_.clamp_negative_pressure;
+  const Real* fx[D];
+  const Real* bx[D];
+  for (int k = 0; k < D; ++k) { fx[k] = fluid_.x[k].data(); bx[k] = boundary_.x[k].data(); }
+  const Real* p = fluid_.p.data();
+  const Real* rho = fluid_.rho.data();
+  const uint32_t* cells = ctx_.boundary_grid.sorted_cells();
+  Real g[D];
+  for (int k = 0; k < D; ++k) g[k] = Real(spec_.gravity[k]);
+  Real* out = ctx_.boundary_p_over_rho2.data();
+  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        Real xb[D];
+        for (int k = 0; k < D; ++k) xb[k] = bx[k][i];
+        f8 sw{}, sp{}, sg{};
+        for_each_candidate_batch<D>(ctx_.fluid_grid, cells[i], fx, xb, support2,
+                                    [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+                                      const f8 w = simd::select(m, K.value(r2), f8{});
+                                      f8 gd = f8{};
+                                      for (int k = 0; k < D; ++k) gd += g[k] * d[k];
+                                      sw += w;
+                                      sp += w * simd::load(p + j);
+                                      sg += w * simd::load(rho + j) * gd;
+                                    });
+        const Real wsum = simd::hsum(sw);
+        Real pb = wsum > 0 ? (simd::hsum(sp) + simd::hsum(sg)) / wsum : Real(0);
+        if (clamp && pb < 0) pb = 0;
+        out[i] = pb * inv_rho02;
+      }
+    });
+  });
+}
+
+namespace {
+// Akinci's volume V_b = 1/Σ_k W_bk over-counts a wall sampled at the fluid spacing: next to a
+// flat single-layer wall a fluid particle reaches 1.07 ρ0 in 2D at rest (and more in corners),
+// and Tait's γ = 7 turns that into a burst at t = 0. We keep Akinci's per-particle volume (so
+// sparse, dense and curved sampling still weigh right relative to each other) and scale it by
+// the one factor that makes a fluid lattice resting on a flat wall sit exactly at ρ0.
+template <int D, class Kernel>
+double flat_wall_calibration(const Kernel& K, double s, int layers, double support) {
+  const int reach = int(std::ceil(support / s)) + 1;
+  // Lateral lattice offsets (1 axis in 2D, 2 in 3D), normal axis = last.
+  auto lateral_sum = [&](double normal) {
+    double sum = 0;
+    for (int a = -reach; a <= reach; ++a)
+      for (int c = (D == 3 ? -reach : 0); c <= (D == 3 ? reach : 0); ++c) {
+        const double r2 = (double(a) * a + double(c) * c) * s * s + normal * normal;
+        sum += double(K.value(Real(r2)));
+      }
+    return sum;
+  };
+  double full = 0, half = 0;  // fluid lattice sums: all rows, and rows on the fluid side
+  for (int n = -reach; n <= reach; ++n) {
+    const double row = lateral_sum(n * s);
+    full += row;
+    if (n >= 0) half += row;
+  }
+  // Boundary layers at normal distance (1 + l)·s below the fluid particle; Akinci sum of
+  // layer l over all layers.
+  double boundary = 0;
+  for (int l = 0; l < layers; ++l) {
+    double akinci = 0;
+    for (int q = 0; q < layers; ++q) akinci += lateral_sum((q - l) * s);
+    boundary += lateral_sum((1 + l) * s) / akinci;  // ρ0 V_l Σ W, in units of ρ0
+  }
+  return (1.0 - half / full) / boundary;
+}
+}  // namespace
+
+// Ψ_b = γ ρ0 / Σ_k W_bk over the boundary particles of the same body (Akinci et al. 2012,
+// eq. 4-5), with γ from flat_wall_calibration. Rigid motion keeps Ψ constant.
 template <int D>
 void Wcsph<D>::compute_boundary_psi() {
   const std::size_t n = boundary_.size();
@@ -136,8 +218,10 @@ void Wcsph<D>::compute_boundary_psi() {
   const Real* bx[D];
   for (int k = 0; k < D; ++k) bx[k] = boundary_.x[k].data();
   const int32_t* owner = boundary_.owner.data();
-  const double rho0 = prm_.rho0;
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+    const double gamma = flat_wall_calibration<D>(K, spec_.spacing, std::max(1, spec_.boundary_layers),
+                                                  prm_.support);
+    const double scale = gamma * prm_.rho0;
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
         Vec<D> xi = boundary_.pos(i);
@@ -151,7 +235,7 @@ void Wcsph<D>::compute_boundary_psi() {
             if (r2 < support2) sum += K.value(r2);
           }
         });
-        boundary_.psi[i] = Real(rho0 / sum);
+        boundary_.psi[i] = Real(scale / sum);
       }
     });
   });
@@ -160,6 +244,7 @@ void Wcsph<D>::compute_boundary_psi() {
 #define RTSPH_INSTANTIATE(D)                          \
   template void Wcsph<D>::compute_density();          \
   template void Wcsph<D>::compute_accelerations();    \
+  template void Wcsph<D>::extrapolate_boundary_pressure(); \
   template void Wcsph<D>::compute_boundary_psi();
 RTSPH_INSTANTIATE(2)
 RTSPH_INSTANTIATE(3)

@@ -1,0 +1,87 @@
+#include "apps/run_summary.h"
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <omp.h>
+
+#include <stdexcept>
+
+#include "io/errors.h"
+#include "scene/scene.h"
+
+namespace rtsph::app {
+
+RunSummary make_summary(const Simulation& sim, long long steps, double wall_s, int threads) {
+  const SimStats st = sim.stats();
+  RunSummary s;
+  s.scene = sim.spec().name;
+  s.dimension = sim.dimension();
+  s.fluid_particles = st.fluid_particles;
+  s.boundary_particles = st.boundary_particles;
+  s.steps = steps;
+  s.sim_time_s = st.time_s;
+  s.wall_s = wall_s;
+  s.fluid_particle_steps_per_s = wall_s > 0 ? double(st.fluid_particles) * double(steps) / wall_s : 0;
+  s.max_density_error = st.max_density_error;
+  s.particles_put_back = st.particles_put_back;
+  s.threads = threads > 0 ? threads : omp_get_max_threads();
+  s.bytes = st.bytes;
+  return s;
+}
+
+void print_summary(const RunSummary& s, std::FILE* out) {
+  fmt::print(out,
+             "scene                  {} ({}D)\n"
+             "fluid particles        {}\n"
+             "boundary particles     {}\n"
+             "steps                  {}\n"
+             "wall time              {:.2f} s\n"
+             "simulated time         {:.4f} s\n"
+             "throughput             {:.3g} fluid particle-steps/s ({} threads)\n"
+             "max density error      {:.2f} %\n"
+             "put back into domain   {}\n",
+             s.scene, s.dimension, s.fluid_particles, s.boundary_particles, s.steps, s.wall_s,
+             s.sim_time_s, s.fluid_particle_steps_per_s, s.threads, 100 * s.max_density_error,
+             s.particles_put_back);
+  std::fflush(out);
+}
+
+std::string summary_json(const RunSummary& s) {
+  nlohmann::ordered_json j;
+  j["scene"] = s.scene;
+  j["dimension"] = s.dimension;
+  j["fluid_particles"] = s.fluid_particles;
+  j["boundary_particles"] = s.boundary_particles;
+  j["steps"] = s.steps;
+  j["sim_time_s"] = s.sim_time_s;
+  j["wall_s"] = s.wall_s;
+  j["fluid_particle_steps_per_s"] = s.fluid_particle_steps_per_s;
+  j["max_density_error"] = s.max_density_error;
+  j["particles_put_back"] = s.particles_put_back;
+  j["threads"] = s.threads;
+  j["bytes"] = s.bytes;
+  return j.dump(2);
+}
+
+int guarded(const std::function<int()>& body) {
+  try {
+    return body();
+  } catch (const SceneError& e) {
+    std::fprintf(stderr, "rtsph: %s\n", e.what());
+    return 2;
+  } catch (const io::CheckpointError& e) {
+    std::fprintf(stderr, "rtsph: %s\n", e.what());
+    return 2;
+  } catch (const std::invalid_argument& e) {
+    std::fprintf(stderr, "rtsph: %s\n", e.what());
+    return 2;
+  } catch (const std::bad_alloc&) {
+    std::fprintf(stderr, "rtsph: out of memory\n");
+    return 1;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "rtsph: %s\n", e.what());
+    return 1;
+  }
+}
+
+}  // namespace rtsph::app

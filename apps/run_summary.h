@@ -1,0 +1,31 @@
+#pragma once
+// The end-of-run summary shared by `run` (text and --stats-json) and by `bench`.
+#include <cstdio>
+#include <functional>
+#include <string>
+
+#include "solvers/simulation.h"
+
+namespace rtsph::app {
+
+struct RunSummary {
+  std::string scene;
+  int dimension = 3;
+  std::size_t fluid_particles = 0, boundary_particles = 0;
+  long long steps = 0;
+  double sim_time_s = 0, wall_s = 0, fluid_particle_steps_per_s = 0;
+  double max_density_error = 0;
+  unsigned long long particles_put_back = 0;
+  int threads = 0;
+  std::size_t bytes = 0;
+};
+
+RunSummary make_summary(const Simulation& sim, long long steps, double wall_s, int threads);
+void print_summary(const RunSummary& s, std::FILE* out);
+std::string summary_json(const RunSummary& s);
+
+/// Runs body and maps failures to exit codes with a one-line message on stderr:
+/// bad input (scene, arguments, checkpoint) → 2; I/O and other errors → 1.
+int guarded(const std::function<int()>& body);
+
+}  // namespace rtsph::app

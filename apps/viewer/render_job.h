@@ -1,0 +1,27 @@
+#pragma once
+// Options of a headless render (`rtsph render`, and `rtsph` without a display).
+#include <string>
+#include <vector>
+
+namespace rtsph::app {
+
+struct RenderJob {
+  std::string scene;
+  std::string out;
+  int frames = 0;            // 0 = end_time × fps
+  double fps = 30;
+  std::string size = "1280x720";
+  std::string color = "speed";
+  std::string display = "obstacles";
+  std::string colormap = "viridis";
+  std::vector<double> range;
+  double range_min = 0, range_max = 0;  // used when max > min
+  int threads = 0;
+  std::vector<std::string> sets;
+  bool quiet = false;
+};
+
+/// Runs the job; returns the exit code (throws on bad input, like the other commands).
+int render_scene(const RenderJob& job);
+
+}  // namespace rtsph::app

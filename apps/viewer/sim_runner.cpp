@@ -1,0 +1,227 @@
+#include "apps/viewer/sim_runner.h"
+
+#include <algorithm>
+#include <chrono>
+#include <exception>
+
+namespace rtsph::app {
+
+namespace {
+double now_s() {
+  using namespace std::chrono;
+  return duration<double>(steady_clock::now().time_since_epoch()).count();
+}
+}  // namespace
+
+SimRunner::SimRunner(const SimSpec& spec, int threads, bool start_paused)
+    : threads_(threads), sim_(make_simulation(spec, threads)), spec_(spec) {
+  paused_ = start_paused;
+  publish(*sim_);
+  thread_ = std::thread([this] { loop(); });
+}
+
+SimRunner::~SimRunner() {
+  quit_ = true;
+  cv_.notify_all();
+  if (thread_.joinable()) thread_.join();
+}
+
+void SimRunner::set_paused(bool p) {
+  paused_ = p;
+  cv_.notify_all();
+}
+
+void SimRunner::step(int n) {
+  paused_ = true;
+  pending_steps_ += std::max(n, 0);
+  cv_.notify_all();
+}
+
+void SimRunner::reset(const SimSpec& spec) {
+  {
+    std::lock_guard<std::mutex> lock(cmd_mutex_);
+    reset_spec_ = std::make_unique<SimSpec>(spec);
+    commands_.clear();
+    resetting_ = true;
+  }
+  cv_.notify_all();
+}
+
+void SimRunner::set_gravity(const Vec3d& g) {
+  std::lock_guard<std::mutex> lock(cmd_mutex_);
+  commands_.push_back([g](Simulation& s) { s.set_gravity(g); });
+}
+
+void SimRunner::set_brush(const Brush& b) {
+  std::lock_guard<std::mutex> lock(cmd_mutex_);
+  commands_.push_back([b](Simulation& s) { s.set_brush(b); });
+}
+
+void SimRunner::move_obstacle(int index, const Vec3d& c) {
+  std::lock_guard<std::mutex> lock(cmd_mutex_);
+  commands_.push_back([index, c](Simulation& s) { s.move_obstacle(index, c); });
+}
+
+void SimRunner::set_live_parameters(const SimSpec& spec) {
+  std::lock_guard<std::mutex> lock(cmd_mutex_);
+  commands_.push_back([spec](Simulation& s) { s.set_live_parameters(spec); });
+}
+
+std::string SimRunner::take_error() {
+  std::lock_guard<std::mutex> lock(cmd_mutex_);
+  std::string e;
+  e.swap(error_);
+  return e;
+}
+
+SimSpec SimRunner::spec() const {
+  std::lock_guard<std::mutex> lock(cmd_mutex_);
+  return spec_;
+}
+
+bool SimRunner::fetch(SimFrame* out) {
+  std::lock_guard<std::mutex> lock(frame_mutex_);
+  if (!fresh_) return false;
+  std::swap(*out, shared_);
+  fresh_ = false;
+  return true;
+}
+
+bool SimRunner::wait_for_frame(std::uint64_t serial, double timeout_s) {
+  std::unique_lock<std::mutex> lock(frame_mutex_);
+  return frame_cv_.wait_for(lock, std::chrono::duration<double>(timeout_s),
+                            [&] { return serial_ > serial; });
+}
+
+void SimRunner::publish(Simulation& sim) {
+  // Copy outside the lock into the private staging frame, then swap it into the shared slot.
+  const BoundaryView b = sim.boundary();
+  staging_.particles.copy_from(sim.fluid(), &b);
+  staging_.stats = sim.stats();
+  staging_.obstacle_centers.clear();
+  for (int i = 0; i < int(sim.spec().obstacles.size()); ++i)
+    staging_.obstacle_centers.push_back(sim.obstacle_center(i));
+  staging_.busy_s = busy_s_;
+  staging_.rtf = rtf_;
+  staging_.step_ms = step_ms_;
+  staging_.generation = generation_;
+  {
+    std::lock_guard<std::mutex> lock(frame_mutex_);
+    staging_.serial = ++serial_;
+    std::swap(staging_, shared_);
+    fresh_ = true;
+  }
+  frame_cv_.notify_all();
+}
+
+void SimRunner::loop() {
+  try {
+    run_loop();
+  } catch (const std::exception& e) {
+    // A failing step stops the solver thread but not the viewer: report it and stay paused.
+    std::lock_guard<std::mutex> lock(cmd_mutex_);
+    error_ = std::string("simulation stopped: ") + e.what();
+    paused_ = true;
+  }
+}
+
+void SimRunner::run_loop() {
+  // Pacing anchors: simulated time may not exceed sim_anchor + (wall - wall_anchor).
+  double wall_anchor = now_s(), sim_anchor = sim_->time();
+  bool was_running = false;
+  win_wall0_ = wall_anchor;
+  win_sim0_ = sim_->time();
+  while (!quit_) {
+    // Commands and resets from the UI thread.
+    std::deque<std::function<void(Simulation&)>> cmds;
+    std::unique_ptr<SimSpec> reset;
+    {
+      std::lock_guard<std::mutex> lock(cmd_mutex_);
+      cmds.swap(commands_);
+      reset.swap(reset_spec_);
+    }
+    if (reset) {
+      try {
+        auto fresh = make_simulation(*reset, threads_);
+        {
+          std::lock_guard<std::mutex> lock(cmd_mutex_);
+          spec_ = *reset;
+        }
+        sim_ = std::move(fresh);
+        ++generation_;
+        busy_s_ = 0;
+        rtf_ = step_ms_ = 0;
+      } catch (const std::exception& e) {
+        std::lock_guard<std::mutex> lock(cmd_mutex_);
+        error_ = e.what();
+      }
+      resetting_ = false;
+      was_running = false;
+      publish(*sim_);
+      continue;
+    }
+    for (auto& c : cmds) c(*sim_);
+
+    if (pending_steps_ > 0) {
+      const double a = now_s();
+      sim_->step();
+      busy_s_ += now_s() - a;
+      --pending_steps_;
+      publish(*sim_);
+      was_running = false;
+      continue;
+    }
+    if (paused_) {
+      was_running = false;
+      std::unique_lock<std::mutex> lock(cmd_mutex_);
+      cv_.wait_for(lock, std::chrono::milliseconds(30));
+      continue;
+    }
+
+    const double wall = now_s();
+    if (!was_running) {
+      wall_anchor = wall;
+      sim_anchor = sim_->time();
+      win_wall0_ = wall;
+      win_sim0_ = sim_->time();
+      win_busy0_ = busy_s_;
+      win_steps0_ = sim_->step_count();
+      was_running = true;
+    }
+    double allowed = sim_anchor + (wall - wall_anchor);
+    if (allowed - sim_->time() > 0.1) {
+      // Behind real time: do not accumulate a backlog to catch up with later.
+      wall_anchor = wall;
+      sim_anchor = sim_->time();
+      allowed = sim_anchor;
+    }
+    if (sim_->time() >= allowed) {
+      std::unique_lock<std::mutex> lock(cmd_mutex_);
+      const double ahead = sim_->time() - allowed;
+      cv_.wait_for(lock, std::chrono::duration<double>(std::clamp(ahead, 0.001, 0.02)));
+      continue;
+    }
+    // A batch of steps: until real time is reached or ~1/60 s of work, then publish.
+    const double batch_start = now_s();
+    double t = batch_start;
+    do {
+      sim_->step();
+      const double e = now_s();
+      busy_s_ += e - t;
+      t = e;
+    } while (sim_->time() < allowed && t - batch_start < 1.0 / 60 && !quit_ && !resetting_ &&
+             pending_steps_ == 0 && !paused_);
+    if (t - win_wall0_ >= 1.0) {
+      const auto steps = sim_->step_count() - win_steps0_;
+      rtf_ = (sim_->time() - win_sim0_) / (t - win_wall0_);
+      step_ms_ = steps ? 1000 * (busy_s_ - win_busy0_) / double(steps) : 0;
+      win_wall0_ = t;
+      win_sim0_ = sim_->time();
+      win_busy0_ = busy_s_;
+      win_steps0_ = sim_->step_count();
+    }
+    publish(*sim_);
+  }
+}
+
+}  // namespace rtsph::app

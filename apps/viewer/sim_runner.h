@@ -1,0 +1,91 @@
+#pragma once
+// Runs a Simulation on its own thread so the viewer stays responsive. After each batch of
+// steps the particle arrays are copied into a snapshot and swapped into a shared slot under a
+// mutex (double buffering); the UI thread swaps it out when it draws. Pacing: simulated time
+// never runs ahead of real time; when the machine cannot keep up the real-time factor says so.
+#include <atomic>
+#include <condition_variable>
+#include <cstdint>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <mutex>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include "render/snapshot.h"
+#include "solvers/simulation.h"
+
+namespace rtsph::app {
+
+struct SimFrame {
+  render::ParticleSnapshot particles;
+  SimStats stats;
+  std::vector<Vec3d> obstacle_centers;
+  double busy_s = 0;            // wall seconds spent in step() since the last reset
+  double rtf = 0;               // simulated / real seconds over about the last second running
+  double step_ms = 0;           // mean wall ms per step over the same window
+  std::uint64_t serial = 0;     // increases with every published frame
+  std::uint64_t generation = 0; // increases with every reset
+};
+
+class SimRunner {
+ public:
+  /// Builds the simulation on the calling thread (throws on a bad spec) and starts the thread.
+  SimRunner(const SimSpec& spec, int threads, bool start_paused);
+  ~SimRunner();
+  SimRunner(const SimRunner&) = delete;
+  SimRunner& operator=(const SimRunner&) = delete;
+
+  void set_paused(bool paused);
+  bool paused() const { return paused_; }
+  /// n single steps (pauses first).
+  void step(int n = 1);
+  /// Rebuilds the simulation from spec on the solver thread; errors go to take_error().
+  void reset(const SimSpec& spec);
+  void set_gravity(const Vec3d& g);
+  void set_brush(const Brush& b);
+  void move_obstacle(int index, const Vec3d& center);
+  void set_live_parameters(const SimSpec& spec);
+
+  /// Swaps the newest published frame into *out; false if nothing new since the last call.
+  bool fetch(SimFrame* out);
+  /// Blocks until a frame newer than `serial` is published (or timeout); for scripts and tests.
+  bool wait_for_frame(std::uint64_t serial, double timeout_s);
+  std::string take_error();
+  SimSpec spec() const;
+  /// True while steps are pending or running (for scripts waiting on `step`).
+  bool busy() const { return pending_steps_ > 0 || resetting_; }
+
+ private:
+  void loop();
+  void run_loop();
+  void publish(Simulation& sim);
+
+  int threads_;
+  std::unique_ptr<Simulation> sim_;
+  SimSpec spec_;
+  mutable std::mutex cmd_mutex_;
+  std::condition_variable cv_;
+  std::deque<std::function<void(Simulation&)>> commands_;
+  std::unique_ptr<SimSpec> reset_spec_;
+  std::atomic<bool> paused_{false}, quit_{false}, resetting_{false};
+  std::atomic<int> pending_steps_{0};
+  std::string error_;
+
+  std::mutex frame_mutex_;
+  std::condition_variable frame_cv_;
+  SimFrame shared_, staging_;
+  bool fresh_ = false;
+  std::uint64_t serial_ = 0, generation_ = 0;
+  double busy_s_ = 0;
+  // real-time factor window
+  double win_sim0_ = 0, win_busy0_ = 0;
+  std::uint64_t win_steps0_ = 0;
+  double win_wall0_ = 0;
+  double rtf_ = 0, step_ms_ = 0;
+  std::thread thread_;
+};
+
+}  // namespace rtsph::app

@@ -1,0 +1,258 @@
+#include "scene/params.h"
+
+#include "solvers/simulation.h"
+
+#include <algorithm>
+#include <type_traits>
+
+namespace rtsph {
+namespace {
+
+template <class>
+struct member_of;
+template <class O, class T>
+struct member_of<T O::*> {
+  using owner = O;
+  using type = T;
+};
+
+// Builds a field from its description and a pointer to the member that stores it; the kind and
+// accessors follow from the member's type, so the table cannot disagree with SimSpec.
+template <auto M>
+FieldInfo<typename member_of<decltype(M)>::owner> field(ParamMeta meta) {
+  using O = typename member_of<decltype(M)>::owner;
+  using T = typename member_of<decltype(M)>::type;
+  FieldInfo<O> f;
+  static_cast<ParamMeta&>(f) = std::move(meta);
+  if constexpr (std::is_same_v<T, Vec3d>) {
+    f.kind = ParamKind::Vec3;
+    f.get_vec = [](const O& o) { return o.*M; };
+    f.set_vec = [](O& o, const Vec3d& v) { o.*M = v; };
+  } else if constexpr (std::is_same_v<T, std::string>) {
+    f.kind = f.choices.empty() ? ParamKind::String : ParamKind::Enum;
+    f.get_text = [](const O& o) { return o.*M; };
+    f.set_text = [](O& o, const std::string& v) { o.*M = v; };
+  } else if constexpr (std::is_enum_v<T>) {
+    f.kind = ParamKind::Enum;
+    f.get = [](const O& o) { return double(int(o.*M)); };
+    f.set = [](O& o, double v) { o.*M = T(int(v)); };
+  } else if constexpr (std::is_same_v<T, bool>) {
+    f.kind = ParamKind::Bool;
+    f.get = [](const O& o) { return o.*M ? 1.0 : 0.0; };
+    f.set = [](O& o, double v) { o.*M = v != 0; };
+  } else if constexpr (std::is_integral_v<T>) {
+    f.kind = ParamKind::Int;
+    f.get = [](const O& o) { return double(o.*M); };
+    f.set = [](O& o, double v) { o.*M = T(v); };
+  } else {
+    static_assert(std::is_same_v<T, double>, "unsupported parameter type");
+    f.kind = ParamKind::Real;
+    f.get = [](const O& o) { return o.*M; };
+    f.set = [](O& o, double v) { o.*M = v; };
+  }
+  if (f.kind == ParamKind::Enum) {
+    const auto it = std::find(f.choices.begin(), f.choices.end(), f.default_text);
+    f.default_value = double(it - f.choices.begin());
+  }
+  return f;
+}
+
+constexpr double kLength = 1e4;  // m, bound on coordinates: keeps lattices and grids finite
+constexpr double kSpeed = 1e3;   // m/s
+constexpr double kTime = 1e6;    // s
+
+}  // namespace
+
+const std::vector<ParamInfo>& parameter_table() {
+  static const std::vector<ParamInfo> table = {
+      field<&SimSpec::name>({.key = "name", .default_text = "scene",
+                             .help = "Scene name, used in output file names and window titles."}),
+      field<&SimSpec::dimension>({.key = "dimension", .min = 2, .max = 3, .default_value = 3,
+                                  .help = "2 or 3. Sets the length of every vector in the file."}),
+      field<&SimSpec::domain_min>({.key = "domain.min", .unit = "m", .min = -kLength, .max = kLength,
+                                   .default_vec = {0, 0, 0},
+                                   .help = "Lower corner of the container. The walls are closed; "
+                                           "wall particles are placed outside them."}),
+      field<&SimSpec::domain_max>({.key = "domain.max", .unit = "m", .min = -kLength, .max = kLength,
+                                   .default_vec = {1, 1, 1},
+                                   .help = "Upper corner of the container; each component must "
+                                           "exceed domain.min."}),
+      field<&SimSpec::spacing>({.key = "fluid.spacing", .unit = "m", .min = 1e-5, .max = 10,
+                                .default_value = 0.02,
+                                .help = "Initial particle spacing. Halving it multiplies the "
+                                        "particle count by 4 (2D) or 8 (3D)."}),
+      field<&SimSpec::rest_density>({.key = "fluid.rest_density", .unit = "kg/m³", .min = 1,
+                                     .max = 1e5, .default_value = 1000,
+                                     .help = "Rest density ρ0; sets the particle mass ρ0·spacing^d."}),
+      field<&SimSpec::viscosity>({.key = "fluid.viscosity", .unit = "m²/s", .min = 0, .max = 10,
+                                  .default_value = 1e-6,
+                                  .help = "Kinematic viscosity ν (Morris et al. 1997). Water: 1e-6.",
+                                  .live = true}),
+      field<&SimSpec::method>({.key = "solver.method", .default_text = "wcsph",
+                               .choices = solver_methods(),
+                               .help = "Solver method; wcsph is weakly compressible SPH."}),
+      field<&SimSpec::eos>({.key = "solver.eos", .default_text = "tait", .choices = {"tait", "linear"},
+                            .help = "Equation of state: Tait p = B((ρ/ρ0)^γ - 1) or linear "
+                                    "p = k(ρ - ρ0)."}),
+      field<&SimSpec::speed_of_sound>({.key = "solver.speed_of_sound", .unit = "m/s", .min = 0,
+                                       .max = 1e5, .default_value = 0,
+                                       .help = "Numerical speed of sound c0; 0 = automatic, "
+                                               "10·sqrt(2 g H) for ~1% density variation."}),
+      field<&SimSpec::stiffness>({.key = "solver.stiffness", .unit = "m²/s²", .min = 0, .max = 1e10,
+                                  .default_value = 0,
+                                  .help = "Linear EOS stiffness k (Pa per kg/m³); 0 = c0²."}),
+      field<&SimSpec::tait_gamma>({.key = "solver.tait_gamma", .min = 1, .max = 10,
+                                   .default_value = 7, .help = "Tait exponent γ (7 for water)."}),
+      field<&SimSpec::kernel>({.key = "solver.kernel", .default_text = "cubic_spline",
+                               .choices = {"cubic_spline", "wendland_c2", "poly6_spiky", "gaussian"},
+                               .help = "Smoothing kernel. Support is 2h, except 3h for gaussian."}),
+      field<&SimSpec::smoothing_ratio>({.key = "solver.smoothing_ratio", .min = 0.5, .max = 3,
+                                        .default_value = 1,
+                                        .help = "Smoothing length over spacing, h/spacing."}),
+      field<&SimSpec::artificial_viscosity>({.key = "solver.artificial_viscosity", .min = 0,
+                                             .max = 2, .default_value = 0.02,
+                                             .help = "Monaghan's α; damps noise at the cost of "
+                                                     "extra dissipation.",
+                                             .live = true}),
+      field<&SimSpec::clamp_negative_pressure>({.key = "solver.clamp_negative_pressure",
+                                                .default_value = 1,
+                                                .help = "Clamp pressure at 0 so the free surface "
+                                                        "does not clump (tensile instability)."}),
+      field<&SimSpec::time_step_mode>({.key = "solver.time_step.mode", .default_text = "cfl",
+                                       .choices = {"cfl", "fixed"},
+                                       .help = "cfl: adaptive dt = cfl·h/(c0 + |v|max), at most "
+                                               "max_dt; fixed: always dt."}),
+      field<&SimSpec::cfl>({.key = "solver.time_step.cfl", .min = 0, .max = 1, .min_exclusive = true,
+                            .default_value = 0.4, .help = "CFL number (cfl mode).", .live = true}),
+      field<&SimSpec::dt>({.key = "solver.time_step.dt", .unit = "s", .min = 0, .max = 1,
+                           .min_exclusive = true, .default_value = 1e-4,
+                           .help = "Time step (fixed mode)."}),
+      field<&SimSpec::max_dt>({.key = "solver.time_step.max_dt", .unit = "s", .min = 0, .max = 1,
+                               .min_exclusive = true, .default_value = 5e-3,
+                               .help = "Upper bound on the time step (cfl mode).", .live = true}),
+      field<&SimSpec::boundary_layers>({.key = "solver.boundary_layers", .min = 1, .max = 4,
+                                        .default_value = 1,
+                                        .help = "Layers of wall particles (Akinci 2012: one "
+                                                "suffices; more for thin fast jets)."}),
+      field<&SimSpec::gravity>({.key = "gravity", .unit = "m/s²", .min = -1000, .max = 1000,
+                                .default_vec = {0, -9.81, 0},
+                                .help = "Gravitational acceleration; y is up.", .live = true}),
+      field<&SimSpec::end_time>({.key = "end_time", .unit = "s", .min = 0, .max = kTime,
+                                 .min_exclusive = true, .default_value = 2,
+                                 .help = "Simulated time at which `rtsph run` stops."}),
+  };
+  return table;
+}
+
+const std::vector<FieldInfo<FluidBlock>>& fluid_block_fields() {
+  static const std::vector<FieldInfo<FluidBlock>> table = {
+      field<&FluidBlock::min>({.key = "min", .unit = "m", .min = -kLength, .max = kLength,
+                               .help = "Lower corner; particles fill a lattice from min + spacing/2.",
+                               .required = true}),
+      field<&FluidBlock::max>({.key = "max", .unit = "m", .min = -kLength, .max = kLength,
+                               .help = "Upper corner; the block must lie inside the domain.",
+                               .required = true}),
+      field<&FluidBlock::velocity>({.key = "velocity", .unit = "m/s", .min = -kSpeed, .max = kSpeed,
+                                    .help = "Initial velocity of the block's particles."}),
+  };
+  return table;
+}
+
+const std::vector<FieldInfo<ObstacleSpec>>& obstacle_fields() {
+  static const std::vector<FieldInfo<ObstacleSpec>> table = {
+      field<&ObstacleSpec::shape>({.key = "shape", .default_text = "box",
+                                   .choices = {"box", "sphere"},
+                                   .choices_2d = {"rectangle", "circle"},
+                                   .help = "box/sphere in 3D, rectangle/circle in 2D."}),
+      field<&ObstacleSpec::center>({.key = "center", .unit = "m", .min = -kLength, .max = kLength,
+                                    .help = "Centre at t = 0; must lie inside the domain.",
+                                    .required = true}),
+      field<&ObstacleSpec::half_extents>({.key = "half_extents", .unit = "m", .min = 1e-6,
+                                          .max = kLength, .default_vec = {0.1, 0.1, 0.1},
+                                          .help = "Half the side lengths of a box/rectangle "
+                                                  "(the full size is twice this)."}),
+      field<&ObstacleSpec::radius>({.key = "radius", .unit = "m", .min = 1e-6, .max = kLength,
+                                    .default_value = 0.1, .help = "Radius of a sphere/circle."}),
+      field<&ObstacleSpec::motion>({.key = "motion.type", .default_text = "static",
+                                    .choices = {"static", "velocity", "path"},
+                                    .help = "static; velocity: constant motion.velocity and "
+                                            "motion.angular_velocity; path: follows "
+                                            "motion.keyframes."}),
+      field<&ObstacleSpec::velocity>({.key = "motion.velocity", .unit = "m/s", .min = -kSpeed,
+                                      .max = kSpeed, .help = "Constant velocity (velocity motion)."}),
+      field<&ObstacleSpec::angular_velocity>({.key = "motion.angular_velocity", .unit = "rad/s",
+                                              .min = -1000, .max = 1000,
+                                              .help = "Rotation about the centre (velocity motion): "
+                                                      "the axis is its direction, the rate its "
+                                                      "length. 2D: one number, the rate about z.",
+                                              .z_only_in_2d = true}),
+  };
+  return table;
+}
+
+const std::vector<FieldInfo<Keyframe>>& keyframe_fields() {
+  static const std::vector<FieldInfo<Keyframe>> table = {
+      field<&Keyframe::time_s>({.key = "time", .unit = "s", .min = 0, .max = kTime,
+                                .help = "Time of the keyframe; strictly increasing.",
+                                .required = true}),
+      field<&Keyframe::position>({.key = "position", .unit = "m", .min = -kLength, .max = kLength,
+                                  .help = "Obstacle centre; linear interpolation in between.",
+                                  .required = true}),
+      field<&Keyframe::angle_rad>({.key = "angle", .unit = "rad", .min = -1e4, .max = 1e4,
+                                   .help = "Rotation about the z axis through the centre."}),
+  };
+  return table;
+}
+
+const std::vector<FieldInfo<EmitterSpec>>& emitter_fields() {
+  static const std::vector<FieldInfo<EmitterSpec>> table = {
+      field<&EmitterSpec::position>({.key = "position", .unit = "m", .min = -kLength, .max = kLength,
+                                     .help = "Nozzle centre; must lie inside the domain.",
+                                     .required = true}),
+      field<&EmitterSpec::direction>({.key = "direction", .min = -kLength, .max = kLength,
+                                      .default_vec = {1, 0, 0},
+                                      .help = "Jet direction, normalised on use; must be non-zero."}),
+      field<&EmitterSpec::speed>({.key = "speed", .unit = "m/s", .min = 0, .max = kSpeed,
+                                  .min_exclusive = true, .default_value = 2,
+                                  .help = "Exit speed of the jet."}),
+      field<&EmitterSpec::width>({.key = "width", .unit = "m", .min = 1e-5, .max = 100,
+                                  .default_value = 0.1,
+                                  .help = "Nozzle width (2D) or diameter (3D); at least "
+                                          "fluid.spacing."}),
+      field<&EmitterSpec::rate>({.key = "rate", .unit = "1/s", .min = 0, .max = 1e9,
+                                 .default_value = 0,
+                                 .help = "Particles per second; 0 = continuous jet, a layer "
+                                         "every spacing/speed."}),
+      field<&EmitterSpec::start_s>({.key = "start", .unit = "s", .min = 0, .max = kTime,
+                                    .default_value = 0, .help = "Time the jet starts."}),
+      field<&EmitterSpec::stop_s>({.key = "stop", .unit = "s", .min = 0, .max = 1e30,
+                                   .default_value = 1e30,
+                                   .help = "Time the jet stops; after start."}),
+      field<&EmitterSpec::max_particles>({.key = "max_particles", .min = 0, .max = 1e9,
+                                          .default_value = 100000,
+                                          .help = "The emitter stops after this many particles."}),
+  };
+  return table;
+}
+
+const std::vector<ArrayMeta>& spec_arrays() {
+  static const std::vector<ArrayMeta> arrays = {
+      {"fluid_blocks", "Boxes filled with fluid at t = 0."},
+      {"obstacles", "Solid bodies sampled as boundary-particle shells; static or moving."},
+      {"emitters", "Nozzles that add fluid while running."},
+  };
+  return arrays;
+}
+
+const ArrayMeta& keyframes_array() {
+  static const ArrayMeta a{"motion.keyframes", "Keyframes of a path motion, sorted by time."};
+  return a;
+}
+
+const ParamInfo* find_param(std::string_view key) {
+  for (const auto& p : parameter_table())
+    if (p.key == key) return &p;
+  return nullptr;
+}
+
+}  // namespace rtsph

@@ -1,0 +1,70 @@
+#!/usr/bin/env bash
+# Every class of bad scene input makes `rtsph run` exit with status 2 and print exactly one line
+# on stderr naming the file and the JSON path at fault.
+# Usage: bad_input.sh <rtsph binary> <source dir>
+set -u
+rtsph=$1
+dir=$(mktemp -d)
+trap 'rm -rf "$dir"' EXIT
+failures=0
+
+# check NAME FILE_ARG [FRAGMENT...]: runs the CLI on FILE_ARG, expects rc 2, one stderr line
+# containing the file name and every FRAGMENT.
+check() {
+  local name=$1 file=$2
+  shift 2
+  local err rc lines
+  "$rtsph" run "$file" --steps 1 --quiet >"$dir/out" 2>"$dir/err"
+  rc=$?
+  err=$(cat "$dir/err")
+  lines=$(wc -l <"$dir/err")
+  local ok=1
+  [ "$rc" -eq 2 ] || { echo "FAIL $name: exit code $rc, expected 2"; ok=0; }
+  [ "$lines" -eq 1 ] || { echo "FAIL $name: $lines lines on stderr, expected 1"; ok=0; }
+  for fragment in "$(basename "$file")" "$@"; do
+    case "$err" in
+      *"$fragment"*) ;;
+      *) echo "FAIL $name: stderr lacks '$fragment'"; ok=0 ;;
+    esac
+  done
+  if [ $ok -eq 1 ]; then echo "ok   $name: $err"; else echo "     stderr: $err"; failures=$((failures + 1)); fi
+}
+
+# write NAME CONTENT: a scene file in the temp dir (printf so \x escapes make raw bytes).
+write() { printf "$2" >"$dir/$1"; echo "$dir/$1"; }
+
+base='"dimension": 3, "domain": {"min": [0,0,0], "max": [1,1,1]}'
+block='"fluid_blocks": [{"min": [0,0,0], "max": [0.2,0.2,0.2]}]'
+
+check missing_file "$dir/no_such_scene.json" "no such file or built-in scene"
+mkdir "$dir/folder.json"
+check unreadable "$dir/folder.json" "directory"
+check malformed "$(write malformed.json "{\n  $base,\n  \"fluid\": {\"spacing\": 0.02,}\n}")" "line 3, column"
+check non_utf8 "$(write latin1.json "{\"name\": \"caf\xe9\"}")" "line 1" "UTF-8"
+check unknown_key "$(write unknown.json "{$base, $block, \"fluid\": {\"spaceing\": 0.02}}")" "fluid.spaceing" "fluid.spacing"
+check wrong_type "$(write type.json "{$base, $block, \"fluid\": {\"spacing\": \"fine\"}}")" "fluid.spacing" '"fine"'
+check out_of_range "$(write range.json "{$base, $block, \"fluid\": {\"spacing\": -0.1}}")" "fluid.spacing" "-0.1"
+check bad_enum "$(write enum.json "{$base, $block, \"solver\": {\"kernel\": \"spline\"}}")" "solver.kernel" '"spline"'
+check array_length "$(write length.json "{\"dimension\": 2, \"domain\": {\"max\": [1, 1, 1]}}")" "domain.max" "[1,1,1]"
+check min_max "$(write minmax.json "{\"domain\": {\"min\": [0,0,0], \"max\": [1,0,1]}}")" "domain.max" "[1, 0, 1]"
+check block_outside "$(write outside.json "{$base, \"fluid_blocks\": [{\"min\": [0,0,0], \"max\": [2,0.5,0.5]}]}")" "fluid_blocks[0].max" "[2, 0.5, 0.5]"
+check emitter_outside "$(write emitter.json "{$base, \"emitters\": [{\"position\": [0.5,5,0.5]}]}")" "emitters[0].position" "[0.5, 5, 0.5]"
+check obstacle_outside "$(write obstacle.json "{$base, \"obstacles\": [{\"center\": [-1,0.5,0.5]}]}")" "obstacles[0].center" "[-1, 0.5, 0.5]"
+check fixed_dt "$(write dt.json "{$base, $block, \"solver\": {\"time_step\": {\"mode\": \"fixed\", \"dt\": 0}}}")" "solver.time_step.dt" ": 0:"
+check memory "$(write memory.json "{$base, \"fluid\": {\"spacing\": 1e-5}}")" "fluid.spacing" "1e-05" "bytes"
+
+# A bad --set on a good scene is the same kind of error.
+"$rtsph" run dam_break_2d --steps 1 --quiet --set fluid.spacing=-1 >"$dir/out" 2>"$dir/err"
+rc=$?
+if [ $rc -eq 2 ] && [ "$(wc -l <"$dir/err")" -eq 1 ] && grep -q -- "--set: fluid.spacing: -1" "$dir/err"; then
+  echo "ok   bad_set: $(cat "$dir/err")"
+else
+  echo "FAIL bad_set: rc $rc, stderr: $(cat "$dir/err")"
+  failures=$((failures + 1))
+fi
+
+if [ $failures -ne 0 ]; then
+  echo "$failures bad-input case(s) failed"
+  exit 1
+fi
+echo "all bad-input cases ok"

@@ -59,7 +59,27 @@ void SimRunner::set_brush(const Brush& b) {
 
 void SimRunner::move_obstacle(int index, const Vec3d& c) {
   std::lock_guard<std::mutex> lock(cmd_mutex_);
-  commands_.push_back([index, c](Simulation& s) { s.move_obstacle(index, c); });
+  commands_.push_back([this, index, c](Simulation& s) {
+    if (index < 0 || index >= int(s.spec().obstacles.size())) return;
+    if (int(obstacle_goals_.size()) <= index) obstacle_goals_.resize(index + 1, {false, Vec3d{}});
+    obstacle_goals_[index] = {true, c};
+  });
+}
+
+void SimRunner::step_once() {
+  for (int i = 0; i < int(obstacle_goals_.size()); ++i) {
+    auto& [active, goal] = obstacle_goals_[i];
+    if (!active) continue;
+    const Vec3d cur = sim_->obstacle_center(i);
+    Vec3d d = goal - cur;
+    const double len = norm(d);
+    const double vmax = std::min(3.0, last_c0_ > 0 ? 0.1 * last_c0_ : 3.0);
+    const double max_move = vmax * (last_dt_ > 0 ? last_dt_ : spec_.max_dt);
+    if (len > max_move) d = d * (max_move / len);
+    else active = false;
+    sim_->move_obstacle(i, cur + d);
+  }
+  sim_->step();
 }
 
 void SimRunner::set_live_parameters(const SimSpec& spec) {
@@ -98,6 +118,8 @@ void SimRunner::publish(Simulation& sim) {
   const BoundaryView b = sim.boundary();
   staging_.particles.copy_from(sim.fluid(), &b);
   staging_.stats = sim.stats();
+  last_dt_ = staging_.stats.dt_s;
+  last_c0_ = staging_.stats.c0;
   staging_.obstacle_centers.clear();
   for (int i = 0; i < int(sim.spec().obstacles.size()); ++i)
     staging_.obstacle_centers.push_back(sim.obstacle_center(i));
@@ -149,6 +171,7 @@ void SimRunner::run_loop() {
         }
         sim_ = std::move(fresh);
         ++generation_;
+        obstacle_goals_.clear();
         busy_s_ = 0;
         rtf_ = step_ms_ = 0;
       } catch (const std::exception& e) {
@@ -164,7 +187,7 @@ void SimRunner::run_loop() {
 
     if (pending_steps_ > 0) {
       const double a = now_s();
-      sim_->step();
+      step_once();
       busy_s_ += now_s() - a;
       --pending_steps_;
       publish(*sim_);
@@ -205,7 +228,7 @@ void SimRunner::run_loop() {
     const double batch_start = now_s();
     double t = batch_start;
     do {
-      sim_->step();
+      step_once();
       const double e = now_s();
       busy_s_ += e - t;
       t = e;

@@ -46,6 +46,8 @@ class SimRunner {
   void reset(const SimSpec& spec);
   void set_gravity(const Vec3d& g);
   void set_brush(const Brush& b);
+  /// Moves an obstacle towards `center` at a bounded speed (min(3 m/s, c0/10)), so that a fast
+  /// mouse drag does not teleport it through the fluid.
   void move_obstacle(int index, const Vec3d& center);
   void set_live_parameters(const SimSpec& spec);
 
@@ -62,6 +64,9 @@ class SimRunner {
   void loop();
   void run_loop();
   void publish(Simulation& sim);
+  void step_once();  // one solver step, with obstacle goals applied
+  std::vector<std::pair<bool, Vec3d>> obstacle_goals_;  // solver thread only
+  double last_dt_ = 0, last_c0_ = 0;
 
   int threads_;
   std::unique_ptr<Simulation> sim_;

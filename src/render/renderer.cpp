@@ -68,6 +68,11 @@ float nice_step(float extent) {
   return (m < 1.5f ? 1.0f : m < 3.5f ? 2.0f : m < 7.5f ? 5.0f : 10.0f) * p;
 }
 
+float legend_scale(const RenderSettings& s, int height) {
+  if (s.ui_scale > 0) return s.ui_scale;
+  return std::max(1.0f, std::round(static_cast<float>(height) / 360.0f * 2.0f) / 2.0f);
+}
+
 std::string format_value(float v) {
   if (v == 0) return "0";
   return fmt::format("{:.4g}", v);
@@ -276,7 +281,7 @@ std::pair<float, float> Renderer::color_range(const RenderSettings& s) const {
 LegendLayout Renderer::legend_layout(int width, int height, const RenderSettings& s) const {
   LegendLayout L;
   if (!s.legend || s.color == ColorMode::Solid) return L;
-  const float scale = s.ui_scale > 0 ? s.ui_scale : (height >= 600 ? 2.0f : 1.0f);
+  const float scale = legend_scale(s, height);
   const float margin = 10 * scale, bar_w = 12 * scale, title_h = 12 * scale;
   float bar_h = std::clamp(0.45f * static_cast<float>(height), 16.0f, 240.0f * scale);
   L.shown = true;
@@ -301,7 +306,7 @@ void Renderer::build_legend(int width, int height, const RenderSettings& s,
                             std::vector<OverlayVertex>* out) const {
   LegendLayout L = legend_layout(width, height, s);
   if (!L.shown) return;
-  const float scale = s.ui_scale > 0 ? s.ui_scale : (height >= 600 ? 2.0f : 1.0f);
+  const float scale = legend_scale(s, height);
   auto quad = [&](float x0, float y0, float x1, float y1, Rgb c, float a, float t0, float t1) {
     OverlayVertex v00{x0, y0, c.r, c.g, c.b, a, t0}, v10{x1, y0, c.r, c.g, c.b, a, t0};
     OverlayVertex v01{x0, y1, c.r, c.g, c.b, a, t1}, v11{x1, y1, c.r, c.g, c.b, a, t1};

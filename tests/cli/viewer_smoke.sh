@@ -1,0 +1,125 @@
+#!/bin/bash
+# Smoke test of the real viewer under a virtual X server: a scripted session (pause, step,
+# brush stroke, obstacle move, screenshot, quit) must exit 0 and leave a non-blank PNG.
+# Usage: viewer_smoke.sh RTSPH_BINARY SOURCE_DIR
+set -u
+bin=$1
+src=${2:-.}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+run_x() {
+  # Runs "$@" with a display: xvfb-run if present, else our own Xvfb, else skip.
+  if command -v xvfb-run >/dev/null; then
+    xvfb-run -a -s "-screen 0 1024x768x24" "$@"
+  elif command -v Xvfb >/dev/null; then
+    local d=:$((100 + RANDOM % 800))
+    Xvfb "$d" -screen 0 1024x768x24 >/dev/null 2>&1 &
+    local xpid=$!
+    sleep 1
+    DISPLAY=$d "$@"
+    local rc=$?
+    kill "$xpid" 2>/dev/null
+    wait "$xpid" 2>/dev/null
+    return $rc
+  else
+    echo "SKIP: neither xvfb-run nor Xvfb is installed"
+    exit 0
+  fi
+}
+
+not_blank() {
+  # True if the PNG has more than one distinct pixel value (python3 when present).
+  local png=$1
+  [ -s "$png" ] || { echo "missing $png"; return 1; }
+  if command -v python3 >/dev/null; then
+    python3 - "$png" <<'PY'
+import struct, sys, zlib
+data = open(sys.argv[1], 'rb').read()
+assert data[:8] == b'\x89PNG\r\n\x1a\n', 'not a PNG'
+pos, idat, w, h = 8, b'', 0, 0
+while pos < len(data):
+    n, kind = struct.unpack('>I4s', data[pos:pos + 8])
+    body = data[pos + 8:pos + 8 + n]
+    if kind == b'IHDR':
+        w, h, depth, ctype = struct.unpack('>IIBB', body[:10])
+        assert depth == 8 and ctype == 6, 'expected RGBA8'
+    elif kind == b'IDAT':
+        idat += body
+    pos += 12 + n
+raw = zlib.decompress(idat)
+stride = w * 4 + 1
+# Filter bytes aside, a blank image decompresses to rows that are all equal after row 0 with
+# filter "up" (all zeros) or identical unfiltered rows; count distinct raw rows and bytes.
+rows = {raw[y * stride + 1:(y + 1) * stride] for y in range(h)}
+values = set(raw[1:stride])
+if len(rows) < 3 and len(values) < 8:
+    sys.exit(f'{sys.argv[1]}: blank image ({w}x{h})')
+print(f'{sys.argv[1]}: {w}x{h}, {len(rows)} distinct rows')
+PY
+  else
+    [ "$(stat -c %s "$png")" -gt 20000 ] || { echo "$png looks blank (small file)"; return 1; }
+  fi
+}
+
+fail=0
+
+# 3D dam break: brush strokes on the fluid.
+cat >"$work/dam.txt" <<EOS
+wait 2
+key space            # pause
+key n                # single step
+sync
+drag left shift 0.25 0.55 0.45 0.55 6   # push
+drag right shift 0.45 0.6 0.3 0.6 6     # pull
+key n
+sync
+drag left none 0.5 0.5 0.55 0.52 4      # orbit
+scroll 1
+key 8                # colour by speed
+key tab
+screenshot $work/dam.png
+wait 2
+quit
+EOS
+out=$(timeout 600 bash -c "$(declare -f run_x); run_x \"$bin\" view dam_break_3d --set fluid.spacing=0.05 --paused --size 480x320 --script \"$work/dam.txt\"" 2>&1)
+rc=$?
+echo "$out"
+[ $rc -eq 0 ] || { echo "FAIL: viewer (dam_break_3d) exited with $rc"; fail=1; }
+not_blank "$work/dam.png" || fail=1
+
+# 2D scene with an obstacle: Ctrl-drag and q/w a/s keys move it.
+cat >"$work/obst.txt" <<EOS
+wait 2
+key space
+drag left ctrl 0.35 0.7 0.45 0.6 5
+key w
+key s
+key n
+sync
+key 6
+screenshot $work/obst.png
+wait 2
+key esc
+EOS
+out=$(timeout 600 bash -c "$(declare -f run_x); run_x \"$bin\" view nozzle_obstacle_2d --size 480x320 --script \"$work/obst.txt\"" 2>&1)
+rc=$?
+echo "$out"
+[ $rc -eq 0 ] || { echo "FAIL: viewer (nozzle_obstacle_2d) exited with $rc"; fail=1; }
+not_blank "$work/obst.png" || fail=1
+echo "$out" | grep -q "no obstacles" && { echo "FAIL: obstacle not found"; fail=1; }
+
+# A bad script is refused with one line and a non-zero exit, before any window opens.
+echo "jump 3" >"$work/bad.txt"
+if env -u DISPLAY -u WAYLAND_DISPLAY "$bin" view dam_break_2d --script "$work/bad.txt" 2>"$work/err"; then
+  echo "FAIL: bad script accepted"; fail=1
+fi
+# Without a display: one clear line and a non-zero exit.
+if env -u DISPLAY -u WAYLAND_DISPLAY "$bin" view dam_break_2d 2>"$work/err"; then
+  echo "FAIL: view without a display exited 0"; fail=1
+fi
+[ "$(wc -l <"$work/err")" -eq 1 ] || { echo "FAIL: expected one line on stderr:"; cat "$work/err"; fail=1; }
+cat "$work/err"
+
+[ $fail -eq 0 ] && echo "viewer smoke test passed"
+exit $fail

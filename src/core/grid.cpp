@@ -8,16 +8,18 @@ namespace rtsph {
 
 template <int D>
 void UniformGrid<D>::configure(const Vec<D>& lo, const Vec<D>& hi, Real cell) {
-  cell_ = cell;
-  inv_cell_ = Real(1) / cell;
+  // A cell a few ulps wider than the support, and cell indices in double: otherwise float
+  // rounding can put two particles closer than the support into cells two apart.
+  cell_ = cell * Real(1 + 1e-5);
+  inv_cell_ = 1.0 / double(cell_);
   std::size_t cells = 1;
   for (int a = 0; a < D; ++a) {
     // +2 padding cells so the stencil of any clamped particle stays inside the grid.
     const double span = std::max(0.0, double(hi[a]) - double(lo[a]));
-    const double interior = std::max(1.0, std::ceil(span / cell + 1e-6));
+    const double interior = std::max(1.0, std::ceil(span / double(cell_) + 1e-6));
     if (interior > 1e7) throw std::length_error("neighbour grid too large");
     dims_[a] = int(interior) + 2;
-    origin_[a] = lo[a] - cell;
+    origin_[a] = lo[a] - cell_;
     cells *= std::size_t(dims_[a]);
   }
   if (cells >= (std::size_t(1) << 31)) throw std::length_error("neighbour grid too large");
@@ -29,9 +31,9 @@ template <int D>
 uint32_t UniformGrid<D>::cell_of(const Vec<D>& p) const {
   uint32_t key = 0, stride = 1;
   for (int a = 0; a < D; ++a) {
-    const Real f = (p[a] - origin_[a]) * inv_cell_;
+    const double f = (double(p[a]) - double(origin_[a])) * inv_cell_;
     // The comparison form also sends NaN to the edge cell instead of undefined behaviour.
-    int c = f >= Real(1) ? (f < Real(dims_[a] - 1) ? int(f) : dims_[a] - 2) : 1;
+    int c = f >= 1.0 ? (f < double(dims_[a] - 1) ? int(f) : dims_[a] - 2) : 1;
     key += uint32_t(c) * stride;
     stride *= uint32_t(dims_[a]);
   }

@@ -61,7 +61,8 @@ class UniformGrid {
 
  private:
   Vec<D> origin_{};
-  Real cell_ = 1, inv_cell_ = 1;
+  Real cell_ = 1;
+  double inv_cell_ = 1;
   int dims_[D]{};
   std::size_t cells_ = 0, n_ = 0;
   AlignedArray<uint32_t> keys_, keys_sorted_, order_, start_;

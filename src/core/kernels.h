@@ -37,13 +37,13 @@ struct CubicSpline {
     const T a = simd::max0(2.0f - q), b = simd::max0(1.0f - q);
     return sigma * (0.25f * a * a * a - b * b * b);
   }
-  // w'(q)/q = (-0.75 a^2 + 3 b^2)/q; the bracket vanishes as q→0 like q, so divide safely.
+  // w'(q)/q = (-0.75 a^2 + 3 b^2)/q. The bracket vanishes like -3q as q→0; the tiny offset
+  // keeps q = 0 finite (G(0) = 0, harmless since ∇W = G·r and r = 0 there).
   template <class T>
   T grad_factor(T r2) const {
     const T q = simd::sqrt(r2) * inv_h;
     const T a = simd::max0(2.0f - q), b = simd::max0(1.0f - q);
     const T num = -0.75f * a * a + 3.0f * b * b;
-    // near q = 0: num ≈ -3q + 2.25q^2 → num/q → -3; use that limit to avoid 0/0.
     const T qs = q + 1e-12f;
     return gsigma * (num / qs);
   }

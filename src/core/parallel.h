@@ -4,6 +4,7 @@
 // so results are bitwise identical for any thread count.
 #include <algorithm>
 #include <cstddef>
+#include <type_traits>
 #include <vector>
 
 namespace rtsph {
@@ -42,7 +43,7 @@ void ThreadPool::parallel_for(std::size_t n, Fn&& fn) const {
   if (n == 0) return;
   // A few blocks per thread balances uneven neighbour counts; the split never changes results.
   const std::size_t blocks = std::min<std::size_t>(n, static_cast<std::size_t>(threads_) * 8);
-  struct Ctx { Fn* fn; std::size_t n, blocks; } ctx{&fn, n, blocks};
+  struct Ctx { std::remove_reference_t<Fn>* fn; std::size_t n, blocks; } ctx{&fn, n, blocks};
   detail::run_blocks(threads_, blocks, &ctx, [](void* p, std::size_t b) {
     auto& c = *static_cast<Ctx*>(p);
     const std::size_t lo = c.n * b / c.blocks, hi = c.n * (b + 1) / c.blocks;
@@ -57,7 +58,7 @@ T ThreadPool::parallel_reduce(std::size_t n, T zero, Fn&& fn) const {
   for (auto& p : partial) p = zero;
   const std::size_t blocks = std::min<std::size_t>(kBlocks, n);
   if (blocks == 0) return zero;
-  struct Ctx { Fn* fn; T* out; std::size_t n, blocks; } ctx{&fn, partial, n, blocks};
+  struct Ctx { std::remove_reference_t<Fn>* fn; T* out; std::size_t n, blocks; } ctx{&fn, partial, n, blocks};
   detail::run_blocks(threads_, blocks, &ctx, [](void* p, std::size_t b) {
     auto& c = *static_cast<Ctx*>(p);
     c.out[b] = (*c.fn)(c.n * b / c.blocks, c.n * (b + 1) / c.blocks);

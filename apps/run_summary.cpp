@@ -43,6 +43,9 @@ void print_summary(const RunSummary& s, std::FILE* out) {
              s.scene, s.dimension, s.fluid_particles, s.boundary_particles, s.steps, s.wall_s,
              s.sim_time_s, s.fluid_particle_steps_per_s, s.threads, 100 * s.max_density_error,
              s.particles_put_back);
+  if (s.status != "completed") fmt::print(out, "status                 {}\n", s.status);
+  if (s.retries > 0) fmt::print(out, "retries (dt halved)    {}\n", s.retries);
+  if (!s.checkpoint.empty()) fmt::print(out, "checkpoint             {}\n", s.checkpoint);
   std::fflush(out);
 }
 
@@ -60,6 +63,9 @@ std::string summary_json(const RunSummary& s) {
   j["particles_put_back"] = s.particles_put_back;
   j["threads"] = s.threads;
   j["bytes"] = s.bytes;
+  j["status"] = s.status;
+  j["retries"] = s.retries;
+  if (!s.checkpoint.empty()) j["checkpoint"] = s.checkpoint;
   return j.dump(2);
 }
 

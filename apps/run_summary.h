@@ -18,6 +18,11 @@ struct RunSummary {
   unsigned long long particles_put_back = 0;
   int threads = 0;
   std::size_t bytes = 0;
+  // `run` only: how the run ended ("completed", "interrupted", "unstable", "io-error"), the
+  // retries --recover made, and the last checkpoint written (empty: none).
+  std::string status = "completed";
+  int retries = 0;
+  std::string checkpoint;
 };
 
 RunSummary make_summary(const Simulation& sim, long long steps, double wall_s, int threads);

@@ -163,9 +163,15 @@ void StateSnapshot::capture(Simulation& sim) {
 
 void StateSnapshot::restore(Simulation& sim) const {
   if (fields_.empty()) throw std::logic_error("StateSnapshot::restore: no state captured");
+  // Names first, so that a snapshot of another solver or scene leaves `sim` untouched; sizes
+  // are known only after prepare_state().
+  const auto before = sim.state_fields();
+  if (before.size() != fields_.size()) throw std::logic_error("StateSnapshot::restore: field count differs");
+  for (std::size_t i = 0; i < before.size(); ++i) {
+    if (before[i].name != fields_[i].name) throw std::logic_error("StateSnapshot::restore: field '" + before[i].name + "' differs");
+  }
   sim.prepare_state(fluid_count_);
   const auto fields = sim.state_fields();
-  if (fields.size() != fields_.size()) throw std::logic_error("StateSnapshot::restore: field count differs");
   for (std::size_t i = 0; i < fields.size(); ++i) {
     if (fields[i].name != fields_[i].name || fields[i].bytes != fields_[i].bytes.size()) {
       throw std::logic_error("StateSnapshot::restore: field '" + fields[i].name + "' differs");

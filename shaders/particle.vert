@@ -19,6 +19,8 @@ uniform int u_color_mode;    // 0 solid, 1 speed, 2 velocity, 3 pressure, 4 dens
 uniform vec2 u_range;        // value mapped to the ends of the colour map
 uniform vec3 u_solid;        // colour for mode 0
 uniform sampler2D u_lut;     // colour map, 1 texel high
+uniform int u_points;        // 1: one GL_POINTS vertex per particle (point sprite), else a quad
+uniform float u_viewport_h;  // pixels
 
 out vec3 v_color;
 out vec3 v_pos_view;         // point on the quad, view space
@@ -70,6 +72,16 @@ void main() {
   if (u_ortho == 0) {
     float lc = length(cv.xyz);
     scale = min(lc / max(-cv.z, 1e-6), 4.0) * (1.05 + u_radius / max(lc, 1e-6));
+  }
+  if (u_points == 1) {
+    // Point sprite: the fragment shader casts its rays from gl_FragCoord. Software rasterisers
+    // set up one point much faster than an instanced quad (llvmpipe: ~5x).
+    v_corner = vec2(0.0);
+    v_pos_view = cv.xyz;
+    gl_Position = u_proj * vec4(cv.xyz, 1.0);
+    float depth = u_ortho == 1 ? 1.0 : max(-cv.z, 1e-6);
+    gl_PointSize = u_radius * scale * u_proj[1][1] * u_viewport_h / depth;
+    return;
   }
   vec2 corner = kCorners[gl_VertexID] * scale;
   v_corner = corner;

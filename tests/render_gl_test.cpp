@@ -26,7 +26,7 @@ struct Px {
   int r, g, b;
 };
 
-class RenderGl : public ::testing::Test {
+class RenderGl : public ::testing::TestWithParam<ParticlePrimitive> {
  protected:
   void SetUp() override {
     std::string err;
@@ -63,6 +63,7 @@ class RenderGl : public ::testing::Test {
   }
   static RenderSettings plain() {
     RenderSettings s;
+    s.primitive = GetParam();
     s.grid = false;
     s.walls = false;
     s.legend = false;
@@ -108,13 +109,19 @@ struct Particles {
 
 }  // namespace
 
-TEST_F(RenderGl, ContextIsCore43) {
+INSTANTIATE_TEST_SUITE_P(Primitives, RenderGl,
+                         ::testing::Values(ParticlePrimitive::Points, ParticlePrimitive::Quads),
+                         [](const auto& info) {
+                           return info.param == ParticlePrimitive::Points ? "Points" : "Quads";
+                         });
+
+TEST_P(RenderGl, ContextIsCore43) {
   EXPECT_TRUE(gl_version_at_least_43());
   EXPECT_NE(ctx_->description().find("OpenGL"), std::string::npos);
   std::printf("%s\n", ctx_->description().c_str());
 }
 
-TEST_F(RenderGl, WaterWherePartsProjectBackgroundElsewhere3D) {
+TEST_P(RenderGl, WaterWherePartsProjectBackgroundElsewhere3D) {
   constexpr int W = 160, H = 120;
   Particles ps;
   for (int i = 0; i < 4; ++i)
@@ -157,7 +164,7 @@ TEST_F(RenderGl, WaterWherePartsProjectBackgroundElsewhere3D) {
   EXPECT_GT(water, static_cast<int>(proj.size()) * 3);
 }
 
-TEST_F(RenderGl, NearerSphereIsInFrontWhateverTheOrder) {
+TEST_P(RenderGl, NearerSphereIsInFrontWhateverTheOrder) {
   constexpr int W = 96, H = 96;
   Camera cam;
   cam.yaw = 0;
@@ -201,7 +208,7 @@ TEST_F(RenderGl, NearerSphereIsInFrontWhateverTheOrder) {
   }
 }
 
-TEST_F(RenderGl, ImpostorDepthIsCurved) {
+TEST_P(RenderGl, ImpostorDepthIsCurved) {
   // A small sphere placed just behind a big one's centre plane but in front of its surface
   // must be hidden: flat billboard depth would show it, ray-cast depth does not.
   constexpr int W = 96, H = 96;
@@ -229,7 +236,7 @@ TEST_F(RenderGl, ImpostorDepthIsCurved) {
   EXPECT_TRUE(e.r > 40 || e.g > 40) << "sphere edge missing";
 }
 
-TEST_F(RenderGl, DiscsIn2D) {
+TEST_P(RenderGl, DiscsIn2D) {
   constexpr int W = 128, H = 96;
   Particles ps;
   ps.dim = 2;
@@ -256,7 +263,7 @@ TEST_F(RenderGl, DiscsIn2D) {
   EXPECT_TRUE(is_bg(at(img, W, int(c.x + rpx * 1.3f + 1), int(c.y)), bg(s)));
 }
 
-TEST_F(RenderGl, LegendEndsMatchTheColourMap) {
+TEST_P(RenderGl, LegendEndsMatchTheColourMap) {
   constexpr int W = 200, H = 160;
   Particles ps;
   for (int i = 0; i < 10; ++i) ps.add(0.1f * i, 0.5f, 0.5f, 0.3f * i, 0, 0);
@@ -314,7 +321,7 @@ TEST_F(RenderGl, LegendEndsMatchTheColourMap) {
   EXPECT_EQ(L.vmax, 1030);
 }
 
-TEST_F(RenderGl, DisplayModesFilterBoundaryParticles) {
+TEST_P(RenderGl, DisplayModesFilterBoundaryParticles) {
   constexpr int W = 96, H = 96;
   Camera cam;
   cam.yaw = 0;
@@ -359,7 +366,7 @@ TEST_F(RenderGl, DisplayModesFilterBoundaryParticles) {
   EXPECT_TRUE(visible(all, pw));
 }
 
-TEST_F(RenderGl, GridWallsAndLegendDrawWithoutErrors) {
+TEST_P(RenderGl, GridWallsAndLegendDrawWithoutErrors) {
   constexpr int W = 160, H = 120;
   Particles ps;
   for (int i = 0; i < 50; ++i) ps.add(0.02f * i, 0.1f, 0.5f, 0.1f * i, 0.05f * i, 0, 1000 + i, 10.0f * i);
@@ -370,6 +377,7 @@ TEST_F(RenderGl, GridWallsAndLegendDrawWithoutErrors) {
   for (ColorMode m : {ColorMode::Solid, ColorMode::Speed, ColorMode::Velocity, ColorMode::Pressure,
                       ColorMode::Density}) {
     RenderSettings s;
+    s.primitive = GetParam();
     s.color = m;
     s.particle_radius = 0.02f;
     OffscreenTarget t(W, H);
@@ -378,13 +386,35 @@ TEST_F(RenderGl, GridWallsAndLegendDrawWithoutErrors) {
     EXPECT_EQ(glGetError(), static_cast<GLenum>(GL_NO_ERROR)) << color_mode_name(m);
     EXPECT_LE(st.draw_calls, 8);  // a handful, independent of N
     EXPECT_EQ(st.particles_drawn, 50u);
+    EXPECT_EQ(st.points, GetParam() == ParticlePrimitive::Points);
     auto img = t.read_rgba();
     EXPECT_FALSE(image_is_blank(img));
   }
   glBindFramebuffer(GL_FRAMEBUFFER, 0);
 }
 
-TEST_F(RenderGl, SnapshotRoundTrip) {
+TEST_P(RenderGl, AutoPrimitiveFallsBackToQuadsForHugeParticles) {
+  if (GetParam() != ParticlePrimitive::Points) return;  // independent of the parameter
+  constexpr int W = 64, H = 64;
+  Particles ps;
+  ps.add(0, 0, 0);
+  renderer_->set_domain(3, {-1, -1, -1}, {1, 1, 1});
+  renderer_->upload(ps.view(), nullptr);
+  Camera cam;
+  cam.frame({-1, -1, -1}, {1, 1, 1}, 1.0f);
+  RenderSettings s = plain();
+  s.primitive = ParticlePrimitive::Auto;
+  s.particle_radius = 0.01f;
+  OffscreenTarget t(W, H);
+  t.bind();
+  EXPECT_TRUE(renderer_->draw(cam, W, H, s).points);
+  s.particle_radius = 0.5f;
+  cam.distance = 1.2f;  // a sphere filling the view: wider than any point sprite allows
+  EXPECT_FALSE(renderer_->draw(cam, 4096, 4096, s).points);
+  glBindFramebuffer(GL_FRAMEBUFFER, 0);
+}
+
+TEST_P(RenderGl, SnapshotRoundTrip) {
   Particles ps;
   ps.add(1, 2, 3, 4, 5, 6, 1001, 7);
   std::vector<float> bx = {9}, by = {8}, bz = {7};

@@ -49,6 +49,7 @@ struct ViewOptions {
   bool paused = false;
   long max_frames = 0;
   bool report = false;
+  float render_scale = 0;  // 0: adapt to keep ≥ 30 fps; else fixed fraction of the window
 };
 
 constexpr int kGlfwInitFailed = -100;  // run_default falls back to headless rendering
@@ -148,6 +149,8 @@ class Viewer {
   float brush_radius_ = 0.2f, brush_strength_ = 50.0f;
   bool brush_active_ = false;
 
+  float scale_ = 1;  // fraction of the window resolution the scene is drawn at
+  std::unique_ptr<render::OffscreenTarget> lowres_;
   std::unique_ptr<render::FrameSink> video_;
   int video_w_ = 0, video_h_ = 0;
   std::string pending_screenshot_;
@@ -179,6 +182,12 @@ class Viewer {
   };
   std::optional<ScriptDrag> script_drag_;
 };
+
+bool have_display() {
+  const char* d = std::getenv("DISPLAY");
+  const char* w = std::getenv("WAYLAND_DISPLAY");
+  return (d && *d) || (w && *w);
+}
 
 Viewer* viewer_of(GLFWwindow* w) { return static_cast<Viewer*>(glfwGetWindowUserPointer(w)); }
 
@@ -689,6 +698,10 @@ void Viewer::draw_ui() {
     ImGui::Text("sim time %.3f s   dt %.3g s   steps %llu", st.time_s, st.dt_s,
                 static_cast<unsigned long long>(st.steps));
     ImGui::Text("%.1f fps   sim %.1f ms/frame   %.2f ms/step", fps_, sim_ms_per_frame_, frame_.step_ms);
+    if (scale_ < 0.999f) {
+      ImGui::SameLine();
+      ImGui::TextDisabled("(drawn at %.0f%%)", 100 * scale_);
+    }
     if (runner_->paused())
       ImGui::Text("real-time factor: paused");
     else if (frame_.rtf >= 0.995)
@@ -802,8 +815,27 @@ void Viewer::frame() {
   int fbw = 1, fbh = 1;
   glfwGetFramebufferSize(win_, &fbw, &fbh);
   if (fbw > 0 && fbh > 0) {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    renderer_->draw(cam_, fbw, fbh, settings_);
+    // Below full resolution (adaptive, to keep the UI ≥ 30 fps on slow GL) the scene is drawn
+    // into a smaller framebuffer and stretched; the legend is drawn sharp on top. Screenshots
+    // and recordings always get full resolution.
+    const float scale = pending_screenshot_.empty() && !video_ ? scale_ : 1.0f;
+    const int rw = std::max(16, int(fbw * scale)), rh = std::max(16, int(fbh * scale));
+    if (scale < 0.999f && rw < fbw) {
+      if (!lowres_ || lowres_->width() != rw || lowres_->height() != rh)
+        lowres_ = std::make_unique<render::OffscreenTarget>(rw, rh);
+      lowres_->bind();
+      render::RenderSettings s = settings_;
+      s.legend = false;
+      renderer_->draw(cam_, rw, rh, s);
+      glBindFramebuffer(GL_READ_FRAMEBUFFER, lowres_->fbo());
+      glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
+      glBlitFramebuffer(0, 0, rw, rh, 0, 0, fbw, fbh, GL_COLOR_BUFFER_BIT, GL_LINEAR);
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      renderer_->draw_legend(fbw, fbh, settings_);
+    } else {
+      glBindFramebuffer(GL_FRAMEBUFFER, 0);
+      renderer_->draw(cam_, fbw, fbh, settings_);
+    }
     capture(fbw, fbh);
   }
 
@@ -829,6 +861,12 @@ void Viewer::frame() {
   const double t = now_s();
   if (t - fps_t0_ >= 0.5) {
     fps_ = fps_frames_ / (t - fps_t0_);
+    if (opt_.render_scale > 0)
+      scale_ = std::min(opt_.render_scale, 1.0f);
+    else if (fps_ < 30)
+      scale_ = std::max(0.35f, scale_ * float(std::max(0.7, fps_ / 33)));
+    else if (fps_ > 50)
+      scale_ = std::min(1.0f, scale_ * 1.1f);
     sim_ms_per_frame_ = fps_frames_ ? 1000 * std::max(0.0, frame_.busy_s - fps_busy0_) / fps_frames_ : 0;
     fps_t0_ = t;
     fps_busy0_ = frame_.busy_s;
@@ -850,6 +888,10 @@ int Viewer::run() {
   if (!parse_size(opt_.size, &w, &h))
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", opt_.size));
 
+  if (!have_display()) {
+    std::fprintf(stderr, "rtsph view: no display (DISPLAY / WAYLAND_DISPLAY unset); use `rtsph render` for headless output\n");
+    return 1;
+  }
   switch (create_window()) {
     case WindowResult::Ok: break;
     case WindowResult::InitFailed: return kGlfwInitFailed;
@@ -910,14 +952,15 @@ int Viewer::run() {
       SimFrame last;
       runner_->fetch(&last);
       const SimFrame& f = last.serial > frame_.serial ? last : frame_;
-      std::printf("viewer: %s %zu fluid particles: %ld frames in %.2f s = %.2f fps; sim %.1f ms/frame, "
-                  "%.2f ms/step, sim time %.3f s, real-time factor %.4f\n",
+      std::printf("viewer: %s %zu fluid particles: %ld frames in %.2f s = %.2f fps (drawn at %.0f%%); "
+                  "sim %.1f ms/frame, %.2f ms/step, sim time %.3f s, real-time factor %.4f\n",
                   spec_.name.c_str(), f.stats.fluid_particles, frames_total_, wall, frames_total_ / wall,
-                  1000 * f.busy_s / std::max<long>(frames_total_, 1), f.step_ms, f.stats.time_s,
-                  f.stats.time_s / wall);
+                  100 * scale_, 1000 * f.busy_s / std::max<long>(frames_total_, 1), f.step_ms,
+                  f.stats.time_s, f.stats.time_s / wall);
     }
   } catch (...) {
     runner_.reset();
+    lowres_.reset();
     if (video_) video_->close();
     video_.reset();
     renderer_.reset();
@@ -929,6 +972,7 @@ int Viewer::run() {
     throw;
   }
   runner_.reset();
+  lowres_.reset();
   if (video_) {
     video_->close();
     std::fprintf(stderr, "rtsph view: %s\n", video_->describe().c_str());
@@ -941,12 +985,6 @@ int Viewer::run() {
   glfwDestroyWindow(win_);
   glfwTerminate();
   return 0;
-}
-
-bool have_display() {
-  const char* d = std::getenv("DISPLAY");
-  const char* w = std::getenv("WAYLAND_DISPLAY");
-  return (d && *d) || (w && *w);
 }
 
 int headless_default() {
@@ -983,12 +1021,9 @@ void add_view_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--script", o->script, "Scripted input (see apps/viewer/script.h): for tests and demos");
   cmd->add_option("--frames", o->max_frames, "Quit after this many frames")->check(CLI::Range(1L, 1000000000L));
   cmd->add_flag("--report", o->report, "Print fps and simulation cost on exit");
+  cmd->add_option("--render-scale", o->render_scale, "Draw the scene at this fraction of the window resolution (default: adaptive, to keep >= 30 fps)")->check(CLI::Range(0.1, 1.0));
   cmd->callback([o, &exit_code] {
     exit_code = guarded([&] {
-      if (!have_display()) {
-        std::fprintf(stderr, "rtsph view: no display (DISPLAY / WAYLAND_DISPLAY unset); use `rtsph render` for headless output\n");
-        return 1;
-      }
       Viewer v(*o);
       int rc = v.run();
       if (rc == kGlfwInitFailed) {

@@ -115,6 +115,9 @@ Renderer::Renderer()
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
   ensure_lut(ColorMap::Viridis);
+  GLfloat range[2] = {1, 1};
+  glGetFloatv(GL_POINT_SIZE_RANGE, range);
+  max_point_size_ = range[1];
 }
 
 Renderer::~Renderer() {
@@ -271,8 +274,10 @@ std::pair<float, float> Renderer::data_range(ColorMode m) const {
 std::pair<float, float> Renderer::color_range(const RenderSettings& s) const {
   auto r = s.auto_range ? data_range(s.color) : std::pair<float, float>{s.range_min, s.range_max};
   if (!(r.second > r.first)) {
-    // A constant field: centre it so it shows the middle of the map rather than one end.
-    float pad = std::max(std::fabs(r.first) * 1e-3f, 1e-6f);
+    // A constant field. Zero (fluid at rest): [0, 1], so it shows as the low end of the map;
+    // otherwise a small interval centred on the value.
+    if (r.first == 0) return {0.0f, 1.0f};
+    float pad = std::fabs(r.first) * 1e-3f;
     r = {r.first - pad, r.first + pad};
   }
   return r;
@@ -366,6 +371,24 @@ void Renderer::build_legend(int width, int height, const RenderSettings& s,
   text(L.x0 - pad - text_width(bottom), L.y1 - th, bottom);
 }
 
+void Renderer::draw_legend(int width, int height, const RenderSettings& s) {
+  std::vector<OverlayVertex> ov;
+  build_legend(width, height, s, &ov);
+  if (ov.empty()) return;
+  ensure_lut(s.map);
+  glViewport(0, 0, width, height);
+  glActiveTexture(GL_TEXTURE0);
+  glBindTexture(GL_TEXTURE_2D, lut_tex_);
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendFuncSeparate(GL_SRC_ALPHA, GL_ONE_MINUS_SRC_ALPHA, GL_ZERO, GL_ONE);
+  draw_overlay(ov, width, height);
+  glBindVertexArray(0);
+  glBindBuffer(GL_ARRAY_BUFFER, 0);
+  glUseProgram(0);
+  glDisable(GL_BLEND);
+}
+
 void Renderer::draw_lines(const std::vector<LineVertex>& v, GLenum mode, const Mat4& mvp) {
   if (v.empty()) return;
   lines_.use();
@@ -387,6 +410,32 @@ void Renderer::draw_overlay(const std::vector<OverlayVertex>& v, int width, int 
   glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(v.size() * sizeof(OverlayVertex)),
                v.data(), GL_STREAM_DRAW);
   glDrawArrays(GL_TRIANGLES, 0, static_cast<GLsizei>(v.size()));
+}
+
+bool Renderer::use_points(const Camera& cam, int height, const RenderSettings& s) const {
+  if (s.primitive != ParticlePrimitive::Auto) return s.primitive == ParticlePrimitive::Points;
+  // Largest on-screen diameter any particle can have: at the nearest possible depth, with the
+  // off-axis stretch allowance of the shader (at most 4x, usually < 1.5x).
+  const float r = std::max(s.particle_radius, s.boundary_radius);
+  const float f = 1.0f / std::tan(0.5f * cam.fovy);
+  float px;
+  if (cam.dim == 2) {
+    px = 2 * r / cam.world_per_pixel(height);
+  } else {
+    const float nearest = std::max(cam.znear(), cam.distance - cam.scene_radius);
+    px = 2 * r * 1.6f * f * static_cast<float>(height) * 0.5f / nearest;
+  }
+  return px < 0.9f * max_point_size_;
+}
+
+void Renderer::draw_particles(GLuint vao, std::size_t first, std::size_t count, bool points) {
+  glBindVertexArray(vao);
+  for (GLuint i = 0; i < 8; ++i) glVertexAttribDivisor(i, points ? 0 : 1);
+  if (points)
+    glDrawArrays(GL_POINTS, static_cast<GLint>(first), static_cast<GLsizei>(count));
+  else
+    glDrawArraysInstancedBaseInstance(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(count),
+                                      static_cast<GLuint>(first));
 }
 
 void Renderer::set_particle_uniforms(const Camera& cam, const Mat4& view, const Mat4& proj,
@@ -493,32 +542,37 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
     ++st.draw_calls;
   }
 
-  // Particles: one instanced draw for the fluid, one per visible boundary group.
+  // Particles: one draw for the fluid, one per visible boundary group.
   particles_.use();
   const float br = s.boundary_radius > 0 ? s.boundary_radius : s.particle_radius;
+  const bool points = use_points(cam, height, s);
+  st.points = points;
+  if (points) glEnable(GL_PROGRAM_POINT_SIZE);
+  glDisable(GL_BLEND);  // particles are opaque; blending costs a read per fragment
+  glUniform1i(particles_.loc("u_points"), points ? 1 : 0);
+  glUniform1f(particles_.loc("u_viewport_h"), static_cast<float>(height));
+  glUniform4f(particles_.loc("u_viewport"), 0, 0, static_cast<float>(width), static_cast<float>(height));
   if (fluid_n_ > 0) {
     set_particle_uniforms(cam, view, proj, s.particle_radius, static_cast<int>(s.color), s.water,
                           color_range(s));
-    glBindVertexArray(fluid_vao_);
-    glDrawArraysInstanced(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(fluid_n_));
+    draw_particles(fluid_vao_, 0, fluid_n_, points);
     ++st.draw_calls;
     st.particles_drawn += fluid_n_;
   }
   if (s.display != DisplayMode::Fluid && obstacle_n_ > 0) {
     set_particle_uniforms(cam, view, proj, br, 0, s.obstacle, {0.0f, 1.0f});
-    glBindVertexArray(boundary_vao_);
-    glDrawArraysInstancedBaseInstance(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(obstacle_n_), 0);
+    draw_particles(boundary_vao_, 0, obstacle_n_, points);
     ++st.draw_calls;
     st.particles_drawn += obstacle_n_;
   }
   if (s.display == DisplayMode::All && wall_n_ > 0) {
     set_particle_uniforms(cam, view, proj, br, 0, s.wall_particles, {0.0f, 1.0f});
-    glBindVertexArray(boundary_vao_);
-    glDrawArraysInstancedBaseInstance(GL_TRIANGLE_STRIP, 0, 4, static_cast<GLsizei>(wall_n_),
-                                      static_cast<GLuint>(obstacle_n_));
+    draw_particles(boundary_vao_, obstacle_n_, wall_n_, points);
     ++st.draw_calls;
     st.particles_drawn += wall_n_;
   }
+  if (points) glDisable(GL_PROGRAM_POINT_SIZE);
+  glEnable(GL_BLEND);
 
   // 3D container: translucent faces on the far side of the box (those the eye sees from the
   // inside) and the twelve edges, depth-tested against the particles, not writing depth.

@@ -20,6 +20,10 @@ namespace rtsph::render {
 
 enum class ColorMode { Solid, Speed, Velocity, Pressure, Density };
 enum class DisplayMode { Fluid, FluidObstacles, All };
+/// How particles are rasterised. Points: one point sprite per particle (fastest on software
+/// rasterisers, limited to the driver's largest point size); Quads: one instanced quad per
+/// particle (any size); Auto: points unless a particle could exceed the point size limit.
+enum class ParticlePrimitive { Auto, Points, Quads };
 
 std::string_view color_mode_name(ColorMode m);    // "solid", "speed", ...
 bool parse_color_mode(std::string_view s, ColorMode* out);
@@ -42,6 +46,7 @@ struct RenderSettings {
   Rgb obstacle{0.62f, 0.62f, 0.60f};
   Rgb wall_particles{0.45f, 0.47f, 0.52f};
   float ui_scale = 0;             // legend text scale; 0 = from the image height
+  ParticlePrimitive primitive = ParticlePrimitive::Auto;
 };
 
 /// Where the legend's colour bar lies, in pixels (origin top-left): the top row shows the range
@@ -56,6 +61,7 @@ struct LegendLayout {
 struct DrawStats {
   int draw_calls = 0;
   std::size_t particles_drawn = 0;
+  bool points = false;  // particles went out as point sprites (else instanced quads)
 };
 
 class Renderer {
@@ -76,6 +82,10 @@ class Renderer {
   void upload(const ParticleView& fluid, const BoundaryView* boundary);
   /// Draws into the bound framebuffer (viewport 0,0,w,h), clearing it first.
   DrawStats draw(const Camera& camera, int width, int height, const RenderSettings& s);
+
+  /// Draws only the legend (on top of what is in the bound framebuffer), e.g. at full
+  /// resolution over a scene drawn at reduced resolution with s.legend = false.
+  void draw_legend(int width, int height, const RenderSettings& s);
 
   /// Data range of the last upload for a mode (speed/velocity: [0, max |v|]).
   std::pair<float, float> data_range(ColorMode m) const;
@@ -103,6 +113,8 @@ class Renderer {
                     std::vector<OverlayVertex>* out) const;
   void set_particle_uniforms(const Camera& cam, const Mat4& view, const Mat4& proj, float radius,
                              int color_mode, const Rgb& solid, std::pair<float, float> range);
+  void draw_particles(GLuint vao, std::size_t first, std::size_t count, bool points);
+  bool use_points(const Camera& cam, int height, const RenderSettings& s) const;
 
   Program particles_, lines_, overlay_;
   GLuint fluid_vao_ = 0, fluid_vbo_ = 0;
@@ -115,6 +127,7 @@ class Renderer {
   int dim_ = 3;
   bool have_domain_ = false;
   Vec3f lo_{0, 0, 0}, hi_{1, 1, 1};
+  float max_point_size_ = 1;
   float max_speed_ = 0, p_min_ = 0, p_max_ = 0, rho_min_ = 0, rho_max_ = 0;
   std::vector<float> scratch_;
 };
@@ -127,6 +140,7 @@ class OffscreenTarget {
   OffscreenTarget(const OffscreenTarget&) = delete;
   OffscreenTarget& operator=(const OffscreenTarget&) = delete;
   void bind() const;
+  GLuint fbo() const { return fbo_; }
   int width() const { return w_; }
   int height() const { return h_; }
   /// RGBA8 pixels, top row first.

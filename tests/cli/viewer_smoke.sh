@@ -114,6 +114,7 @@ echo "jump 3" >"$work/bad.txt"
 if env -u DISPLAY -u WAYLAND_DISPLAY "$bin" view dam_break_2d --script "$work/bad.txt" 2>"$work/err"; then
   echo "FAIL: bad script accepted"; fail=1
 fi
+grep -q "bad.txt:1: unknown command 'jump'" "$work/err" || { echo "FAIL: bad script message:"; cat "$work/err"; fail=1; }
 # Without a display: one clear line and a non-zero exit.
 if env -u DISPLAY -u WAYLAND_DISPLAY "$bin" view dam_break_2d 2>"$work/err"; then
   echo "FAIL: view without a display exited 0"; fail=1

@@ -3,7 +3,7 @@
 # through ffmpeg, and clear errors for bad options.
 # Usage: render_smoke.sh RTSPH_BINARY SOURCE_DIR
 set -u
-bin=$1
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 unset DISPLAY WAYLAND_DISPLAY
@@ -46,6 +46,12 @@ done
 "$bin" render no_such_scene --out "$work/x.png" 2>"$work/err" >/dev/null
 check test $? -eq 2
 check test "$(wc -l <"$work/err")" -eq 1
+
+# No OpenGL 4.3 context: one line, exit 1.
+MESA_GL_VERSION_OVERRIDE=3.3 "$bin" render dam_break_2d --out "$work/y.png" --frames 1 2>"$work/err" >/dev/null
+check test $? -eq 1
+check test "$(wc -l <"$work/err")" -eq 1
+check grep -q "OpenGL 4.3" "$work/err"
 
 [ $fail -eq 0 ] && echo "render smoke test passed"
 exit $fail

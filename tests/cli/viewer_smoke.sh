@@ -3,7 +3,7 @@
 # brush stroke, obstacle move, screenshot, quit) must exit 0 and leave a non-blank PNG.
 # Usage: viewer_smoke.sh RTSPH_BINARY SOURCE_DIR
 set -u
-bin=$1
+bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
 src=${2:-.}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
@@ -99,15 +99,32 @@ key n
 sync
 key 6
 screenshot $work/obst.png
-wait 2
+key v                # record a few frames
+wait 4
+key v
+wait 1
 key esc
 EOS
-out=$(timeout 600 bash -c "$(declare -f run_x); run_x \"$bin\" view nozzle_obstacle_2d --size 480x320 --script \"$work/obst.txt\"" 2>&1)
+out=$(cd "$work" && timeout 600 bash -c "$(declare -f run_x); run_x \"$bin\" view nozzle_obstacle_2d --size 480x320 --script \"$work/obst.txt\"" 2>&1)
 rc=$?
 echo "$out"
 [ $rc -eq 0 ] || { echo "FAIL: viewer (nozzle_obstacle_2d) exited with $rc"; fail=1; }
 not_blank "$work/obst.png" || fail=1
 echo "$out" | grep -q "no obstacles" && { echo "FAIL: obstacle not found"; fail=1; }
+# The recording went to an MP4 (ffmpeg on PATH) or a PNG folder, and the viewer said which.
+if command -v ffmpeg >/dev/null; then
+  ls "$work"/rtsph_nozzle_obstacle_2d_*.mp4 >/dev/null 2>&1 || { echo "FAIL: no MP4 recording"; fail=1; }
+  echo "$out" | grep -q "recording MP4" || { echo "FAIL: recording message"; fail=1; }
+else
+  ls "$work"/rtsph_nozzle_obstacle_2d_*_frames/frame_000000.png >/dev/null 2>&1 || { echo "FAIL: no PNG recording"; fail=1; }
+fi
+
+# No OpenGL 4.3 (Mesa told to offer 3.3): one line on stderr, non-zero exit.
+out=$(MESA_GL_VERSION_OVERRIDE=3.3 timeout 120 bash -c "$(declare -f run_x); run_x \"$bin\" view dam_break_2d --frames 3" 2>&1)
+rc=$?
+echo "$out"
+[ $rc -ne 0 ] || { echo "FAIL: viewer without GL 4.3 exited 0"; fail=1; }
+echo "$out" | grep -q "OpenGL 4.3" || { echo "FAIL: no GL 4.3 message"; fail=1; }
 
 # A bad script is refused with one line and a non-zero exit, before any window opens.
 echo "jump 3" >"$work/bad.txt"

@@ -279,13 +279,15 @@ TYPED_TEST(SimdKernelTest, LanesMatchScalar) {
         const float ws = k.value(r2[l]), gs = k.grad_factor(r2[l]);
         const float r = std::sqrt(r2[l]);
         ASSERT_TRUE(std::isfinite(wv[l]) && std::isfinite(gv[l])) << "h=" << h << " r2=" << r2[l];
-        EXPECT_NEAR(wv[l], ws, 1e-6f * std::abs(ws) + 1e-7f * wscale)
+        // The 8-lane path takes 1/√r² from the hardware estimate plus one Newton step (~2^-22
+        // relative), which (1 - q/2)^n and (2 - q)^n amplify a few times near the support.
+        EXPECT_NEAR(wv[l], ws, 1e-5f * std::abs(ws) + 1e-7f * wscale)
             << "value h=" << h << " r2=" << r2[l] << " lane " << l;
-        EXPECT_NEAR(gv[l] * r, gs * r, 1e-6f * std::abs(gs) * r + 4e-7f * gr_max)
+        EXPECT_NEAR(gv[l] * r, gs * r, 1e-5f * std::abs(gs) * r + 4e-7f * gr_max)
             << "grad h=" << h << " r2=" << r2[l] << " lane " << l << " (G " << gv[l] << " vs " << gs << ")";
-        // Away from the cancellations (r → 0 and R − r → 0) G itself agrees to ~1-2 ulps.
+        // Away from the cancellations (r → 0 and R − r → 0) G itself agrees to a few 1e-6.
         if (r > 0.25f * R && r < 0.75f * R) {
-          EXPECT_NEAR(gv[l], gs, 2e-6f * std::abs(gs)) << "grad h=" << h << " r2=" << r2[l];
+          EXPECT_NEAR(gv[l], gs, 1e-5f * std::abs(gs)) << "grad h=" << h << " r2=" << r2[l];
         }
       }
     }

@@ -24,8 +24,8 @@ constexpr double hpow(double h) { return D == 2 ? h * h : h * h * h; }
 template <int D>
 struct CubicSpline {
   static constexpr float support_ratio = 2.0f;
-  float h, inv_h, sigma, gsigma;
-  explicit CubicSpline(double h_) : h(float(h_)), inv_h(float(1.0 / h_)) {
+  float h, inv_h, sigma, gsigma, tiny;
+  explicit CubicSpline(double h_) : h(float(h_)), inv_h(float(1.0 / h_)), tiny(float(1e-20 * h_ * h_)) {
     const double s = (D == 2 ? 10.0 / (7.0 * std::numbers::pi) : 1.0 / std::numbers::pi);
     sigma = float(s / detail::hpow<D>(h_));
     gsigma = float(s / (detail::hpow<D>(h_) * h_ * h_));
@@ -33,19 +33,19 @@ struct CubicSpline {
   // Branch-free: w(q) = (2-q)_+^3/4 - (1-q)_+^3 equals the piecewise cubic on [0,1) and [1,2).
   template <class T>
   T value(T r2) const {
-    const T q = simd::sqrt(r2) * inv_h;
+    const T q = r2 * simd::rsqrt(r2 + tiny) * inv_h;  // r = r²/√r², exact 0 at r = 0
     const T a = simd::max0(2.0f - q), b = simd::max0(1.0f - q);
     return sigma * (0.25f * a * a * a - b * b * b);
   }
-  // w'(q)/q = (-0.75 a^2 + 3 b^2)/q. The bracket vanishes like -3q as q→0; the tiny offset
-  // keeps q = 0 finite (G(0) = 0, harmless since ∇W = G·r and r = 0 there).
+  // w'(q)/q = (-0.75 a^2 + 3 b^2)/q. The bracket vanishes like -3q as q→0, so the offset
+  // `tiny` under the root only keeps r = 0 finite (G(0) = 0; ∇W = G·r is 0 there anyway).
   template <class T>
   T grad_factor(T r2) const {
-    const T q = simd::sqrt(r2) * inv_h;
+    const T inv_r = simd::rsqrt(r2 + tiny);
+    const T q = r2 * inv_r * inv_h;
     const T a = simd::max0(2.0f - q), b = simd::max0(1.0f - q);
     const T num = -0.75f * a * a + 3.0f * b * b;
-    const T qs = q + 1e-12f;
-    return gsigma * (num / qs);
+    return (gsigma * h) * num * inv_r;
   }
 };
 
@@ -53,15 +53,15 @@ struct CubicSpline {
 template <int D>
 struct WendlandC2 {
   static constexpr float support_ratio = 2.0f;
-  float h, inv_h, sigma, gsigma;
-  explicit WendlandC2(double h_) : h(float(h_)), inv_h(float(1.0 / h_)) {
+  float h, inv_h, sigma, gsigma, tiny;
+  explicit WendlandC2(double h_) : h(float(h_)), inv_h(float(1.0 / h_)), tiny(float(1e-20 * h_ * h_)) {
     const double s = (D == 2 ? 7.0 / (4.0 * std::numbers::pi) : 21.0 / (16.0 * std::numbers::pi));
     sigma = float(s / detail::hpow<D>(h_));
     gsigma = float(s / (detail::hpow<D>(h_) * h_ * h_));
   }
   template <class T>
   T value(T r2) const {
-    const T q = simd::sqrt(r2) * inv_h;
+    const T q = r2 * simd::rsqrt(r2 + tiny) * inv_h;
     const T a = simd::max0(1.0f - 0.5f * q);
     const T a2 = a * a;
     return sigma * (a2 * a2 * (2.0f * q + 1.0f));
@@ -69,7 +69,7 @@ struct WendlandC2 {
   // w'(q) = -5 q (1 - q/2)^3, so w'(q)/q = -5 (1 - q/2)^3: smooth, no division.
   template <class T>
   T grad_factor(T r2) const {
-    const T q = simd::sqrt(r2) * inv_h;
+    const T q = r2 * simd::rsqrt(r2 + tiny) * inv_h;
     const T a = simd::max0(1.0f - 0.5f * q);
     return gsigma * (-5.0f * a * a * a);
   }

@@ -8,8 +8,9 @@
 
 namespace rtsph {
 
+// Forced inlining keeps the caller's accumulators in registers across batches.
 template <int D, class Fn>
-inline void for_each_candidate_batch(const UniformGrid<D>& grid, uint32_t cell,
+[[gnu::always_inline]] inline void for_each_candidate_batch(const UniformGrid<D>& grid, uint32_t cell,
                                      const Real* const xs[D], const Real xi[D], Real support2,
                                      Fn&& fn) {
   using simd::f8;

@@ -25,6 +25,26 @@ inline f8 sqrt(f8 x) {
   return x;
 #endif
 }
+/// 1/√x to ~23 bits: the 12-bit hardware estimate plus one Newton step, several times cheaper
+/// than a square root and a division. Callers keep x > 0.
+inline f8 rsqrt(f8 x) {
+#if defined(__AVX__)
+  const f8 y = _mm256_rsqrt_ps(x);
+  return y * (1.5f - 0.5f * x * y * y);
+#else
+  for (int i = 0; i < kWidth; ++i) x[i] = 1.0f / std::sqrt(x[i]);
+  return x;
+#endif
+}
+/// 1/x to ~23 bits (estimate plus one Newton step). Callers keep x away from 0.
+inline f8 rcp(f8 x) {
+#if defined(__AVX__)
+  const f8 y = _mm256_rcp_ps(x);
+  return y * (2.0f - x * y);
+#else
+  return 1.0f / x;
+#endif
+}
 inline f8 exp(f8 x) {
   for (int i = 0; i < kWidth; ++i) x[i] = std::exp(x[i]);
   return x;
@@ -48,6 +68,8 @@ inline float hsum(f8 v) {
 
 // Scalar twins so kernels can be written once for float and f8.
 inline float sqrt(float x) { return std::sqrt(x); }
+inline float rsqrt(float x) { return 1.0f / std::sqrt(x); }
+inline float rcp(float x) { return 1.0f / x; }
 inline float exp(float x) { return std::exp(x); }
 inline float max0(float x) { return x > 0.0f ? x : 0.0f; }
 

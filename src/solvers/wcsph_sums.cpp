@@ -91,8 +91,8 @@ void Wcsph<D>::compute_accelerations() {
                 vr += vij[k] * d[k];
               }
               const f8 rhoj = simd::load(rho + j);
-              const f8 inv = 1.0f / (r2 + eps);
-              const f8 pi_visc = simd::select(vr < 0.0f, -ach * vr * inv * 2.0f / (rhoi + rhoj), f8{});
+              const f8 inv = simd::rcp(r2 + eps);
+              const f8 pi_visc = simd::select(vr < 0.0f, -ach * vr * inv * 2.0f * simd::rcp(rhoi + rhoj), f8{});
               const f8 s = simd::select(m, -mass * (Pi + simd::load(P + j) + pi_visc) * G, f8{});
               const f8 lam = simd::select(m, mass * nu * (iri + simd::load(inv_rho + j)) * G * r2 * inv, f8{});
               for (int k = 0; k < D; ++k) acc[k] += s * d[k] + lam * vij[k];
@@ -107,7 +107,7 @@ void Wcsph<D>::compute_accelerations() {
                 vr += vib[k] * d[k];
               }
               const f8 w = simd::load(psi + j);
-              const f8 inv = 1.0f / (r2 + eps);
+              const f8 inv = simd::rcp(r2 + eps);
               const f8 pi_visc = simd::select(vr < 0.0f, -ach * vr * inv * iri, f8{});
               const f8 s = simd::select(m, -w * (Pi + simd::load(Pb + j) + pi_visc) * G, f8{});
               const f8 lam = simd::select(m, w * nu * (2.0f * iri) * G * r2 * inv, f8{});

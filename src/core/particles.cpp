@@ -41,16 +41,37 @@ std::size_t FluidParticles<D>::bytes() const {
   return b;
 }
 template <int D>
-void FluidParticles<D>::permute(const uint32_t* order, AlignedArray<Real>& tmp,
-                                const ThreadPool& pool) {
+std::size_t FluidParticles<D>::Spare::bytes() const {
+  std::size_t b = id.bytes();
+  for (const auto& a : xv) b += a.bytes();
+  return b;
+}
+
+template <int D>
+void FluidParticles<D>::permute_kinematics(const uint32_t* order, Spare& spare,
+                                           const ThreadPool& pool) {
+  const std::size_t n = size();
+  Real* src[2 * D];
+  Real* dst[2 * D];
   for (int k = 0; k < D; ++k) {
-    gather(x[k], order, tmp, pool);
-    gather(v[k], order, tmp, pool);
-    gather(a[k], order, tmp, pool);
+    src[k] = x[k].data();
+    src[D + k] = v[k].data();
   }
-  gather(rho, order, tmp, pool);
-  gather(p, order, tmp, pool);
-  gather(id, order, tmp, pool);
+  for (int k = 0; k < 2 * D; ++k) {
+    spare.xv[k].resize(n);
+    dst[k] = spare.xv[k].data();
+  }
+  spare.id.resize(n);
+  pool.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (int k = 0; k < 2 * D; ++k)
+      for (std::size_t i = b; i < e; ++i) dst[k][i] = src[k][order[i]];
+    for (std::size_t i = b; i < e; ++i) spare.id[i] = id[order[i]];
+  });
+  for (int k = 0; k < D; ++k) {
+    x[k].swap(spare.xv[k]);
+    v[k].swap(spare.xv[D + k]);
+  }
+  id.swap(spare.id);
 }
 
 template <int D>

@@ -25,8 +25,15 @@ struct FluidParticles {
   void set_pos(std::size_t i, const Vec<D>& p_) { for (int k = 0; k < D; ++k) x[k][i] = p_[k]; }
   void set_vel(std::size_t i, const Vec<D>& v_) { for (int k = 0; k < D; ++k) v[k][i] = v_[k]; }
   std::size_t bytes() const;
-  /// Reorders every array so that new[i] = old[order[i]]; tmp is scratch of the same size.
-  void permute(const uint32_t* order, AlignedArray<Real>& tmp, const ThreadPool& pool);
+  /// Reorders x, v and id so that new[i] = old[order[i]], in one parallel pass into `spare`
+  /// whose buffers are then swapped in. a, ρ and p are left in the old order: callers sort
+  /// right before recomputing them, so permuting them would be wasted bandwidth.
+  struct Spare {
+    std::array<AlignedArray<Real>, 2 * D> xv;
+    AlignedArray<uint32_t> id;
+    std::size_t bytes() const;
+  };
+  void permute_kinematics(const uint32_t* order, Spare& spare, const ThreadPool& pool);
 };
 
 template <int D>

@@ -225,7 +225,7 @@ void Wcsph<D>::sort_fluid_by_cell() {
   const Real* xs[D];
   for (int k = 0; k < D; ++k) xs[k] = fluid_.x[k].data();
   ctx_.fluid_grid.build(xs, fluid_.size(), pool_);
-  fluid_.permute(ctx_.fluid_grid.order(), ctx_.tmp, pool_);
+  fluid_.permute_kinematics(ctx_.fluid_grid.order(), ctx_.spare, pool_);
 }
 
 template <int D>

@@ -27,10 +27,11 @@ struct StepContext {
   AlignedArray<Real> p_over_rho2;  // pᵢ/ρᵢ², symmetric pressure term
   AlignedArray<Real> inv_rho;      // 1/ρᵢ, Morris viscosity
   AlignedArray<Real> boundary_p_over_rho2;  // p_b/ρ0² extrapolated from the fluid (Adami 2012)
-  AlignedArray<Real> tmp;          // permutation scratch
+  AlignedArray<Real> tmp;          // permutation scratch (boundary)
+  typename FluidParticles<D>::Spare spare;  // double buffers for the fluid reorder
   std::size_t bytes() const {
     return fluid_grid.bytes() + boundary_grid.bytes() + p_over_rho2.bytes() + inv_rho.bytes() +
-           boundary_p_over_rho2.bytes() + tmp.bytes();
+           boundary_p_over_rho2.bytes() + tmp.bytes() + spare.bytes();
   }
 };
 

@@ -156,11 +156,11 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("scene", o->scene, "Scene file or built-in name (see `rtsph scenes`)")->required();
   cmd->add_option("--out", o->out, "Output: FILE.png (last frame), FILE.mp4 (video, ffmpeg) or a directory (frame_000000.png, …)")->required();
   cmd->add_option("--frames", o->frames, "Number of frames (default: the scene's end_time × fps)")->check(CLI::Range(1, 1000000));
-  cmd->add_option("--fps", o->fps, "Frames per simulated second; frames are 1/fps apart")->check(CLI::PositiveNumber);
-  cmd->add_option("--size", o->size, "Image size WxH");
-  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure or density");
-  cmd->add_option("--display", o->display, "fluid, obstacles (fluid + obstacles) or all (with wall particles)");
-  cmd->add_option("--colormap", o->colormap, "viridis or turbo");
+  cmd->add_option("--fps", o->fps, "Frames per simulated second; frames are 1/fps apart")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--size", o->size, "Image size WxH")->capture_default_str();
+  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure or density")->capture_default_str();
+  cmd->add_option("--display", o->display, "fluid, obstacles (fluid + obstacles) or all (with wall particles)")->capture_default_str();
+  cmd->add_option("--colormap", o->colormap, "viridis or turbo")->capture_default_str();
   cmd->add_option("--range", o->range, "Fixed colour range MIN,MAX (default: automatic per frame)")->expected(2)->delimiter(',');
   cmd->add_option("--threads", o->threads, "Solver threads (0 = all cores)")->check(CLI::Range(0, 1024));
   cmd->add_option("--set", o->sets, "Override a scene parameter, e.g. --set fluid.spacing=0.04");

@@ -47,6 +47,17 @@ done
 check test $? -eq 2
 check test "$(wc -l <"$work/err")" -eq 1
 
+# `rtsph` without arguments and without a display renders a short dam break and prints the path.
+out=$(cd "$work" && "$bin" 2>"$work/log")
+check test $? -eq 0
+if command -v ffmpeg >/dev/null; then
+  check test "$out" = "rtsph_dam_break_3d.mp4"
+  check test -s "$work/rtsph_dam_break_3d.mp4"
+else
+  check test -s "$work/rtsph_dam_break_3d_frames/frame_000000.png"
+fi
+check grep -q "no display" "$work/log"
+
 # No OpenGL 4.3 context: one line, exit 1.
 MESA_GL_VERSION_OVERRIDE=3.3 "$bin" render dam_break_2d --out "$work/y.png" --frames 1 2>"$work/err" >/dev/null
 check test $? -eq 1

@@ -105,6 +105,7 @@ void write_checkpoint(const std::filesystem::path& path, Simulation& sim, std::u
   write_file_atomic(path, [&](std::ostream& os) {
     Fnv1a64 hash;
     auto put = [&](const void* p, std::size_t n) {
+      if (n == 0) return;  // an empty field's data() may be null: no memcpy(nullptr, 0) below
       hash.update(p, n);
       os.write(static_cast<const char*>(p), static_cast<std::streamsize>(n));
     };

@@ -4,7 +4,7 @@
 # and retries from the last good state instead, up to --max-retries times.
 # Usage: guard.sh RTSPH_BINARY SOURCE_DIR
 set -euo pipefail
-rtsph=$1
+rtsph=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")  # absolute: the script changes directory
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"

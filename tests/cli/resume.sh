@@ -4,7 +4,7 @@
 # checkpoints are refused with a one-line message and exit code 2.
 # Usage: resume.sh RTSPH_BINARY SOURCE_DIR
 set -euo pipefail
-rtsph=$1
+rtsph=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")  # absolute: the script changes directory
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"

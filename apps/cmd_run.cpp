@@ -333,7 +333,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--format", o->format, "Export format: csv, vtk or ply");
   cmd->add_option("--attributes", o->attributes, "Exported arrays: all or a list of position,velocity,density,pressure,id");
   cmd->add_option("--stats-json", o->stats_json, "Write the summary as JSON to this file");
-  cmd->add_flag("--quiet", o->quiet, "No progress and no summary on the terminal");
+  cmd->add_flag("--quiet", o->quiet, "No progress output; with --stats-json the summary goes only to that file");
   cmd->add_option("--checkpoint-every", o->checkpoint_every,
                   "Write a checkpoint every S simulated seconds, and at the end")
       ->check(CLI::NonNegativeNumber);

@@ -1,5 +1,7 @@
 #include "apps/viewer/sim_runner.h"
 
+#include "solvers/health.h"
+
 #include <sys/resource.h>
 #include <sys/syscall.h>
 #include <unistd.h>
@@ -84,6 +86,12 @@ void SimRunner::step_once() {
     sim_->move_obstacle(i, cur + d);
   }
   sim_->step();
+  // The instability guard of `rtsph run`: stop and say why instead of drawing NaNs; R resets.
+  if (auto msg = check_health_message(*sim_)) {
+    std::lock_guard<std::mutex> lock(cmd_mutex_);
+    error_ = "simulation unstable, paused (press R to reset): " + *msg;
+    paused_ = true;
+  }
 }
 
 void SimRunner::set_live_parameters(const SimSpec& spec) {

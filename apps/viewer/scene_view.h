@@ -24,7 +24,8 @@ inline void setup_scene_view(const SimSpec& spec, render::Renderer& r, render::R
   scene_bounds(spec, &lo, &hi);
   r.set_domain(spec.dimension, lo, hi);
   s.particle_radius = float(0.5 * spec.spacing);
-  s.boundary_radius = float(0.5 * spec.spacing);
+  // Overlapping boundary spheres read as one shaded solid surface rather than a bead shell.
+  s.boundary_radius = float(0.85 * spec.spacing);
 }
 
 /// Camera framing the scene's domain.

@@ -126,6 +126,7 @@ int render_scene(const RenderJob& job) {
       const ParticleView fluid = sim->fluid();
       const BoundaryView boundary = sim->boundary();
       renderer.upload(fluid, &boundary);
+      renderer.upload_solids(obstacle_solids(*sim));
       target.bind();
       renderer.draw(cam, width, height, settings);
       pixels = target.read_rgba();

@@ -1,7 +1,8 @@
 #pragma once
 // Shared by `rtsph view` and `rtsph render`: how a scene is shown (domain, particle size,
-// initial camera) and the option spellings.
+// obstacle solids, initial camera) and the option spellings.
 #include <string>
+#include <vector>
 
 #include "render/camera.h"
 #include "render/renderer.h"
@@ -24,8 +25,29 @@ inline void setup_scene_view(const SimSpec& spec, render::Renderer& r, render::R
   scene_bounds(spec, &lo, &hi);
   r.set_domain(spec.dimension, lo, hi);
   s.particle_radius = float(0.5 * spec.spacing);
-  // Overlapping boundary spheres read as one shaded solid surface rather than a bead shell.
-  s.boundary_radius = float(0.85 * spec.spacing);
+}
+
+/// The simulation's obstacles as render solids: the scene geometry at the current pose.
+inline std::vector<render::SolidShape> obstacle_solids(const Simulation& sim) {
+  const auto& obs = sim.spec().obstacles;
+  std::vector<render::SolidShape> out(obs.size());
+  for (int i = 0; i < int(obs.size()); ++i) {
+    const Pose pose = sim.obstacle_transform(i);
+    render::SolidShape& s = out[i];
+    s.kind = obs[i].shape == ObstacleShape::Sphere ? render::SolidShape::Kind::Sphere
+                                                   : render::SolidShape::Kind::Box;
+    s.center = {float(pose.center[0]), float(pose.center[1]), float(pose.center[2])};
+    for (int k = 0; k < 3; ++k) {
+      Vec3d axis{};
+      axis[k] = 1;
+      const Vec3d col = pose.apply(axis) - pose.center;
+      for (int j = 0; j < 3; ++j) s.rotation[3 * k + j] = float(col[j]);
+    }
+    s.half_extents = {float(obs[i].half_extents[0]), float(obs[i].half_extents[1]),
+                      float(obs[i].half_extents[2])};
+    s.radius = float(obs[i].radius);
+  }
+  return out;
 }
 
 /// Camera framing the scene's domain.

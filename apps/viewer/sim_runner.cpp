@@ -1,5 +1,6 @@
 #include "apps/viewer/sim_runner.h"
 
+#include "apps/viewer/scene_view.h"
 #include "solvers/health.h"
 
 #include <sys/resource.h>
@@ -135,6 +136,7 @@ void SimRunner::publish(Simulation& sim) {
   staging_.obstacle_centers.clear();
   for (int i = 0; i < int(sim.spec().obstacles.size()); ++i)
     staging_.obstacle_centers.push_back(sim.obstacle_center(i));
+  staging_.obstacle_solids = obstacle_solids(sim);
   staging_.busy_s = busy_s_;
   staging_.rtf = rtf_;
   staging_.step_ms = step_ms_;

@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "render/snapshot.h"
+#include "render/solids.h"
 #include "solvers/simulation.h"
 
 namespace rtsph::app {
@@ -23,6 +24,7 @@ struct SimFrame {
   render::ParticleSnapshot particles;
   SimStats stats;
   std::vector<Vec3d> obstacle_centers;
+  std::vector<render::SolidShape> obstacle_solids;  // geometry at the current poses
   double busy_s = 0;            // wall seconds spent in step() since the last reset
   double rtf = 0;               // simulated / real seconds over about the last second running
   double step_ms = 0;           // mean wall ms per step over the same window

@@ -732,7 +732,7 @@ void Viewer::draw_ui() {
     const char* maps[] = {"viridis", "turbo"};
     int m = int(settings_.map);
     if (ImGui::Combo("colour map", &m, maps, 2)) settings_.map = render::ColorMap(m);
-    const char* displays[] = {"fluid", "fluid + obstacles", "everything (walls)"};
+    const char* displays[] = {"fluid", "fluid + obstacles", "everything (boundary particles)"};
     int d = int(settings_.display);
     if (ImGui::Combo("display (TAB)", &d, displays, 3)) settings_.display = render::DisplayMode(d);
     ImGui::Checkbox("auto range", &settings_.auto_range);
@@ -796,6 +796,7 @@ void Viewer::frame() {
     }
     const BoundaryView b = frame_.particles.boundary();
     renderer_->upload(frame_.particles.fluid(), &b);
+    renderer_->upload_solids(frame_.obstacle_solids);
     if (e_kin_.size() >= 4000) {
       // Keep the plot bounded: drop every other sample.
       for (auto* v : {&e_kin_, &e_pot_, &e_tot_}) {
@@ -938,6 +939,7 @@ int Viewer::run() {
     {
       const BoundaryView b = frame_.particles.boundary();
       renderer_->upload(frame_.particles.fluid(), &b);
+      renderer_->upload_solids(frame_.obstacle_solids);
     }
     std::fprintf(stderr, "rtsph view: %s (%dD), %zu fluid + %zu boundary particles, %s\n", spec.name.c_str(),
                  spec.dimension, frame_.stats.fluid_particles, frame_.stats.boundary_particles,

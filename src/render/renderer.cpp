@@ -542,13 +542,18 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
     ++st.draw_calls;
   }
 
-  // Particles: one draw for the fluid, one per visible boundary group.
+  glDisable(GL_BLEND);  // solids and particles are opaque; blending costs a read per fragment
+  // Obstacle solids before the particles: in 2D (no depth test) the fluid lies on top of them;
+  // in 3D both write their true depth, so the order does not matter.
+  if (s.display != DisplayMode::Fluid && solids_.draw(dim_, view, proj, cam.dim == 2, s.obstacle))
+    ++st.draw_calls;
+
+  // Particles: one draw for the fluid, one for the boundary particles (display All).
   particles_.use();
   const float br = s.boundary_radius > 0 ? s.boundary_radius : s.particle_radius;
   const bool points = use_points(cam, height, s);
   st.points = points;
   if (points) glEnable(GL_PROGRAM_POINT_SIZE);
-  glDisable(GL_BLEND);  // particles are opaque; blending costs a read per fragment
   glUniform1i(particles_.loc("u_points"), points ? 1 : 0);
   glUniform1f(particles_.loc("u_viewport_h"), static_cast<float>(height));
   glUniform4f(particles_.loc("u_viewport"), 0, 0, static_cast<float>(width), static_cast<float>(height));
@@ -559,17 +564,12 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
     ++st.draw_calls;
     st.particles_drawn += fluid_n_;
   }
-  if (s.display != DisplayMode::Fluid && obstacle_n_ > 0) {
-    set_particle_uniforms(cam, view, proj, br, 0, s.obstacle, {0.0f, 1.0f});
-    draw_particles(boundary_vao_, 0, obstacle_n_, points);
-    ++st.draw_calls;
-    st.particles_drawn += obstacle_n_;
-  }
-  if (s.display == DisplayMode::All && wall_n_ > 0) {
+  // Obstacle samples and walls are one contiguous range (obstacles first, see upload()).
+  if (s.display == DisplayMode::All && obstacle_n_ + wall_n_ > 0) {
     set_particle_uniforms(cam, view, proj, br, 0, s.wall_particles, {0.0f, 1.0f});
-    draw_particles(boundary_vao_, obstacle_n_, wall_n_, points);
+    draw_particles(boundary_vao_, 0, obstacle_n_ + wall_n_, points);
     ++st.draw_calls;
-    st.particles_drawn += wall_n_;
+    st.particles_drawn += obstacle_n_ + wall_n_;
   }
   if (points) glDisable(GL_PROGRAM_POINT_SIZE);
   glEnable(GL_BLEND);

@@ -3,7 +3,8 @@
 // are copied into one vertex buffer (upload) and drawn with one instanced call for the fluid
 // and one per boundary group, plus a few calls for grid, walls and legend — O(N), no
 // per-particle draw calls. 3D particles are ray-cast sphere impostors with true depth and
-// Blinn-Phong shading; 2D particles are discs under an orthographic camera.
+// Blinn-Phong shading; 2D particles are discs under an orthographic camera. Obstacles are
+// drawn as solids from their geometry (SolidPass, one more call).
 #include <epoxy/gl.h>
 
 #include <string>
@@ -15,10 +16,13 @@
 #include "render/camera.h"
 #include "render/colormap.h"
 #include "render/shader.h"
+#include "render/solids.h"
 
 namespace rtsph::render {
 
 enum class ColorMode { Solid, Speed, Velocity, Pressure, Density };
+/// Fluid: fluid only. FluidObstacles: fluid and obstacle solids. All: also every boundary
+/// particle (walls and the obstacles' Akinci samples), in the wall particle colour.
 enum class DisplayMode { Fluid, FluidObstacles, All };
 /// How particles are rasterised. Points: one point sprite per particle (fastest on software
 /// rasterisers, limited to the driver's largest point size); Quads: one instanced quad per
@@ -37,13 +41,13 @@ struct RenderSettings {
   bool auto_range = true;       // else [range_min, range_max]
   float range_min = 0, range_max = 1;
   float particle_radius = 0.01f;  // m (drawn radius; half the spacing looks like a continuum)
-  float boundary_radius = 0;      // m; 0 = particle_radius
+  float boundary_radius = 0;      // m, boundary particles (display All); 0 = particle_radius
   bool legend = true;
   bool grid = true;
   bool walls = true;              // translucent container faces and outline
   Rgb water{0.13f, 0.42f, 0.85f};
   Rgb background{0.10f, 0.11f, 0.13f};
-  Rgb obstacle{0.62f, 0.62f, 0.60f};
+  Rgb obstacle{0.62f, 0.62f, 0.60f};  // solids
   Rgb wall_particles{0.45f, 0.47f, 0.52f};
   float ui_scale = 0;             // legend text scale; 0 = from the image height
   ParticlePrimitive primitive = ParticlePrimitive::Auto;
@@ -80,6 +84,8 @@ class Renderer {
 
   /// Copies the arrays to the GPU and computes the value ranges. boundary may be null.
   void upload(const ParticleView& fluid, const BoundaryView* boundary);
+  /// The obstacle solids to draw (display modes other than Fluid), in their current poses.
+  void upload_solids(const std::vector<SolidShape>& solids) { solids_.set(solids); }
   /// Draws into the bound framebuffer (viewport 0,0,w,h), clearing it first.
   DrawStats draw(const Camera& camera, int width, int height, const RenderSettings& s);
 
@@ -95,6 +101,7 @@ class Renderer {
   std::size_t fluid_count() const { return fluid_n_; }
   std::size_t obstacle_count() const { return obstacle_n_; }
   std::size_t wall_count() const { return wall_n_; }
+  std::size_t solid_count() const { return solids_.count(); }
 
  private:
   struct LineVertex {
@@ -117,6 +124,7 @@ class Renderer {
   bool use_points(const Camera& cam, int height, const RenderSettings& s) const;
 
   Program particles_, lines_, overlay_;
+  SolidPass solids_;
   GLuint fluid_vao_ = 0, fluid_vbo_ = 0;
   GLuint boundary_vao_ = 0, boundary_vbo_ = 0;
   GLuint line_vao_ = 0, line_vbo_ = 0;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "core/particles.h"
+#include "solvers/geometry.h"
 #include "solvers/spec.h"
 
 namespace rtsph {
@@ -71,6 +72,13 @@ class Simulation {
   /// velocity (Δx/dt) acts on the fluid.
   virtual void move_obstacle(int index, const Vec3d& center) = 0;
   virtual Vec3d obstacle_center(int index) const = 0;
+  /// Current rigid pose of obstacle `index` (centre and rotation; body → world), for drawing it
+  /// from its geometry. The default knows only the centre.
+  virtual Pose obstacle_transform(int index) const {
+    Pose p;
+    p.center = obstacle_center(index);
+    return p;
+  }
   /// Applies parameters that are safe to change while running (viscosity, α, CFL, gravity…).
   virtual void set_live_parameters(const SimSpec& s) = 0;
 

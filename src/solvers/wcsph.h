@@ -67,6 +67,7 @@ class Wcsph final : public Simulation {
   void set_brush(const Brush& b) override { brush_ = b; }
   void move_obstacle(int index, const Vec3d& center) override;
   Vec3d obstacle_center(int index) const override;
+  Pose obstacle_transform(int index) const override;
   void set_live_parameters(const SimSpec& s) override;
   void prepare_state(std::size_t fluid_count) override;
   std::vector<StateField> state_fields() override;

@@ -119,13 +119,20 @@ void Wcsph<D>::state_loaded() {
   boundary_.permute(ctx_.boundary_grid.order(), ctx_.tmp, pool_);
 }
 
+template <int D>
+Pose Wcsph<D>::obstacle_transform(int index) const {
+  if (index < 0 || index >= int(obstacles_.size())) return {};
+  return obstacles_[index].pose;
+}
+
 #define RTSPH_INSTANTIATE(D)                                            \
   template ParticleView Wcsph<D>::fluid() const;                        \
   template BoundaryView Wcsph<D>::boundary() const;                     \
   template SimStats Wcsph<D>::stats() const;                            \
   template void Wcsph<D>::prepare_state(std::size_t);                   \
   template std::vector<StateField> Wcsph<D>::state_fields();            \
-  template void Wcsph<D>::state_loaded();
+  template void Wcsph<D>::state_loaded();                               \
+  template Pose Wcsph<D>::obstacle_transform(int) const;
 RTSPH_INSTANTIATE(2)
 RTSPH_INSTANTIATE(3)
 #undef RTSPH_INSTANTIATE

@@ -1,6 +1,7 @@
 #!/bin/bash
 # Smoke test of the real viewer under a virtual X server: a scripted session (pause, step,
-# brush stroke, obstacle move, screenshot, quit) must exit 0 and leave a non-blank PNG.
+# brush stroke, obstacle move, screenshot, quit) must exit 0 and leave a non-blank PNG in which
+# the 2D obstacle is a filled solid.
 # Usage: viewer_smoke.sh RTSPH_BINARY SOURCE_DIR
 set -u
 bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
@@ -62,6 +63,42 @@ PY
   fi
 }
 
+obstacle_is_solid() {
+  # True if the PNG holds a filled patch of the obstacle grey (RenderSettings::obstacle, 158 158
+  # 153 where the 2D shading is flat): a solid disc, not a ring of boundary particles.
+  command -v python3 >/dev/null || return 0
+  python3 - "$1" <<'PY'
+import struct, sys, zlib
+data = open(sys.argv[1], 'rb').read()
+pos, idat = 8, b''
+while pos < len(data):
+    n, kind = struct.unpack('>I4s', data[pos:pos + 8])
+    if kind == b'IHDR':
+        w, h = struct.unpack('>II', data[pos + 8:pos + 16])
+    elif kind == b'IDAT':
+        idat += data[pos + 8:pos + 8 + n]
+    pos += 12 + n
+raw, stride, prev, count = zlib.decompress(idat), w * 4, bytearray(w * 4), 0
+for y in range(h):
+    f, row = raw[y * (stride + 1)], bytearray(raw[y * (stride + 1) + 1:(y + 1) * (stride + 1)])
+    for i in range(stride):
+        a = row[i - 4] if i >= 4 else 0
+        b, c = prev[i], prev[i - 4] if i >= 4 else 0
+        if f == 1: row[i] = (row[i] + a) & 255
+        elif f == 2: row[i] = (row[i] + b) & 255
+        elif f == 3: row[i] = (row[i] + (a + b) // 2) & 255
+        elif f == 4:
+            p = a + b - c
+            pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+            row[i] = (row[i] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+    count += sum(1 for x in range(0, stride, 4)
+                 if abs(row[x] - 158) <= 3 and abs(row[x + 1] - 158) <= 3 and abs(row[x + 2] - 153) <= 3)
+    prev = row
+print(f'{sys.argv[1]}: {count} obstacle-grey pixels')
+sys.exit(0 if count > 300 else 1)
+PY
+}
+
 fail=0
 
 # 3D dam break: brush strokes on the fluid.
@@ -110,6 +147,7 @@ rc=$?
 echo "$out"
 [ $rc -eq 0 ] || { echo "FAIL: viewer (nozzle_obstacle_2d) exited with $rc"; fail=1; }
 not_blank "$work/obst.png" || fail=1
+obstacle_is_solid "$work/obst.png" || { echo "FAIL: the obstacle is not drawn as a filled solid"; fail=1; }
 echo "$out" | grep -q "no obstacles" && { echo "FAIL: obstacle not found"; fail=1; }
 # The recording went to an MP4 (ffmpeg on PATH) or a PNG folder, and the viewer said which.
 if command -v ffmpeg >/dev/null; then

@@ -2,6 +2,7 @@
 // guard and a summary. Exit codes: 0 done, 1 I/O or other error, 2 bad input (scene, arguments,
 // checkpoint), 3 unstable, 128+signal after SIGINT (130) / SIGTERM (143).
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <chrono>
 #include <cmath>
@@ -17,6 +18,7 @@
 #include "io/atomic_file.h"
 #include "io/checkpoint.h"
 #include "io/exporter.h"
+#include "scene/params.h"
 #include "scene/scene.h"
 #include "solvers/health.h"
 #include "solvers/simulation.h"
@@ -69,23 +71,21 @@ std::string halve_time_step(SimSpec& s) {
   return fmt::format("solver.time_step.cfl {:.4g} -> {:.4g}, max_dt {:.4g} -> {:.4g} s", cfl, s.cfl, max_dt, s.max_dt);
 }
 
-/// --set on a resumed run may only change what can change while running (the stored scene
-/// fixes the rest); end_time only sets the default --until.
-void check_resume_overrides(const SimSpec& stored, SimSpec wanted) {
-  wanted.viscosity = stored.viscosity;
-  wanted.artificial_viscosity = stored.artificial_viscosity;
-  wanted.cfl = stored.cfl;
-  wanted.max_dt = stored.max_dt;
-  wanted.dt = stored.dt;
-  wanted.time_step_mode = stored.time_step_mode;
-  wanted.clamp_negative_pressure = stored.clamp_negative_pressure;
-  wanted.end_time = stored.end_time;
-  if (scene_to_json(wanted) != scene_to_json(stored)) {
-    throw std::invalid_argument(
-        "--set with --resume can only change fluid.viscosity, solver.artificial_viscosity, "
-        "solver.time_step.*, solver.clamp_negative_pressure and end_time; other parameters are fixed by the "
-        "checkpoint's scene");
-  }
+/// --set on a resumed run may change the live parameters except gravity (c0 was derived from it
+/// when the run started, and a checkpoint does not store derived parameters), and end_time, which
+/// only sets the default --until. The stored scene fixes the rest.
+void check_resume_overrides(const SimSpec& stored, const SimSpec& wanted) {
+  SimSpec allowed = stored;
+  copy_live_parameters(wanted, allowed);
+  allowed.gravity = stored.gravity;
+  allowed.end_time = wanted.end_time;
+  if (scene_to_json(allowed) == scene_to_json(wanted)) return;
+  std::vector<std::string> keys;
+  for (const auto& p : parameter_table())
+    if (p.live && p.key != "gravity") keys.push_back(p.key);
+  throw std::invalid_argument(fmt::format("--set with --resume can only change {} and end_time; other "
+                                          "parameters are fixed by the checkpoint's scene",
+                                          fmt::join(keys, ", ")));
 }
 
 int run(const RunOptions& o) {

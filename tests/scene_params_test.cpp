@@ -83,7 +83,9 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
   for (const auto& p : parameter_table())
     if (p.live) live.insert(p.key);
   EXPECT_EQ(live, (std::set<std::string>{"fluid.viscosity", "solver.artificial_viscosity",
-                                         "solver.time_step.cfl", "gravity", "solver.time_step.max_dt"}));
+                                         "solver.clamp_negative_pressure", "solver.time_step.mode",
+                                         "solver.time_step.cfl", "solver.time_step.dt",
+                                         "solver.time_step.max_dt", "gravity"}));
   EXPECT_EQ(find_param("solver.method")->choices, solver_methods());
 }
 

@@ -81,4 +81,19 @@ struct SimSpec {
   double end_time = 2.0;           // s
 };
 
+/// Copies the parameters that are safe to change while a simulation runs, because the solver
+/// reads them afresh every step. (Gravity also sets the automatic c0, once, when the solver is
+/// built: changing it later changes the force, not c0.) The parameter table's `live` flags
+/// (src/scene/params.cpp) name the same set; tests/scene_live_params_test.cpp holds them together.
+inline void copy_live_parameters(const SimSpec& from, SimSpec& to) {
+  to.viscosity = from.viscosity;
+  to.artificial_viscosity = from.artificial_viscosity;
+  to.clamp_negative_pressure = from.clamp_negative_pressure;
+  to.time_step_mode = from.time_step_mode;
+  to.cfl = from.cfl;
+  to.dt = from.dt;
+  to.max_dt = from.max_dt;
+  to.gravity = from.gravity;
+}
+
 }  // namespace rtsph

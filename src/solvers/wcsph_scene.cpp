@@ -135,16 +135,7 @@ Vec3d Wcsph<D>::obstacle_center(int index) const {
 }
 
 template <int D>
-void Wcsph<D>::set_live_parameters(const SimSpec& s) {
-  spec_.viscosity = s.viscosity;
-  spec_.artificial_viscosity = s.artificial_viscosity;
-  spec_.cfl = s.cfl;
-  spec_.max_dt = s.max_dt;
-  spec_.dt = s.dt;
-  spec_.time_step_mode = s.time_step_mode;
-  spec_.gravity = s.gravity;
-  spec_.clamp_negative_pressure = s.clamp_negative_pressure;
-}
+void Wcsph<D>::set_live_parameters(const SimSpec& s) { copy_live_parameters(s, spec_); }
 
 #define RTSPH_INSTANTIATE(D)                                   \
   template void Wcsph<D>::build_boundary();                    \

@@ -2,10 +2,7 @@
 # Every class of bad scene input makes `rtsph run` exit with status 2 and print exactly one line
 # on stderr naming the file and the JSON path at fault.
 # Usage: bad_input.sh <rtsph binary> <source dir>
-set -u
-rtsph=$1
-dir=$(mktemp -d)
-trap 'rm -rf "$dir"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
 failures=0
 
 # check NAME FILE_ARG [FRAGMENT...]: runs the CLI on FILE_ARG, expects rc 2, one stderr line
@@ -13,11 +10,10 @@ failures=0
 check() {
   local name=$1 file=$2
   shift 2
-  local err rc lines
-  "$rtsph" run "$file" --steps 1 --quiet >"$dir/out" 2>"$dir/err"
-  rc=$?
-  err=$(cat "$dir/err")
-  lines=$(wc -l <"$dir/err")
+  local err lines
+  runrc "$file" --steps 1 --quiet
+  err=$(cat err.txt)
+  lines=$(wc -l <err.txt)
   local ok=1
   [ "$rc" -eq 2 ] || { echo "FAIL $name: exit code $rc, expected 2"; ok=0; }
   [ "$lines" -eq 1 ] || { echo "FAIL $name: $lines lines on stderr, expected 1"; ok=0; }
@@ -31,14 +27,14 @@ check() {
 }
 
 # write NAME CONTENT: a scene file in the temp dir (printf so \x escapes make raw bytes).
-write() { printf "$2" >"$dir/$1"; echo "$dir/$1"; }
+write() { printf "$2" >"$work/$1"; echo "$work/$1"; }
 
 base='"dimension": 3, "domain": {"min": [0,0,0], "max": [1,1,1]}'
 block='"fluid_blocks": [{"min": [0,0,0], "max": [0.2,0.2,0.2]}]'
 
-check missing_file "$dir/no_such_scene.json" "no such file or built-in scene"
-mkdir "$dir/folder.json"
-check unreadable "$dir/folder.json" "directory"
+check missing_file "$work/no_such_scene.json" "no such file or built-in scene"
+mkdir "$work/folder.json"
+check unreadable "$work/folder.json" "directory"
 check malformed "$(write malformed.json "{\n  $base,\n  \"fluid\": {\"spacing\": 0.02,}\n}")" "line 3, column"
 check non_utf8 "$(write latin1.json "{\"name\": \"caf\xe9\"}")" "line 1" "UTF-8"
 check unknown_key "$(write unknown.json "{$base, $block, \"fluid\": {\"spaceing\": 0.02}}")" "fluid.spaceing" "fluid.spacing"
@@ -54,12 +50,11 @@ check fixed_dt "$(write dt.json "{$base, $block, \"solver\": {\"time_step\": {\"
 check memory "$(write memory.json "{$base, \"fluid\": {\"spacing\": 1e-5}}")" "fluid.spacing" "1e-05" "bytes"
 
 # A bad --set on a good scene is the same kind of error.
-"$rtsph" run dam_break_2d --steps 1 --quiet --set fluid.spacing=-1 >"$dir/out" 2>"$dir/err"
-rc=$?
-if [ $rc -eq 2 ] && [ "$(wc -l <"$dir/err")" -eq 1 ] && grep -q -- "--set: fluid.spacing: -1" "$dir/err"; then
-  echo "ok   bad_set: $(cat "$dir/err")"
+runrc dam_break_2d --steps 1 --quiet --set fluid.spacing=-1
+if [ $rc -eq 2 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -q -- "--set: fluid.spacing: -1" err.txt; then
+  echo "ok   bad_set: $(cat err.txt)"
 else
-  echo "FAIL bad_set: rc $rc, stderr: $(cat "$dir/err")"
+  echo "FAIL bad_set: rc $rc, stderr: $(cat err.txt)"
   failures=$((failures + 1))
 fi
 

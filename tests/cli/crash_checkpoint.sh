@@ -6,12 +6,7 @@
 #     works for root too) stops the run with a clear message and exit code 1, and the state is
 #     saved to $TMPDIR and resumes.
 # Usage: crash_checkpoint.sh RTSPH_BINARY SOURCE_DIR
-set -euo pipefail
-rtsph=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")  # absolute: the script changes directory
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-fail() { echo "FAIL: $*"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
 
 wait_for() {  # wait_for DIR GLOB N: until DIR holds at least N files matching GLOB
   for _ in $(seq 400); do
@@ -50,16 +45,11 @@ done
 # 2. The export directory disappears mid-run (replaced by a file): exit 1, state rescued.
 export TMPDIR=$work/tmp
 mkdir -p "$TMPDIR"
-set +e
 "$rtsph" run dam_break_2d --until 100 --threads 1 --export out --every 0.005 --quiet >/dev/null 2>err.txt &
 pid=$!
-set -e
 wait_for out "frame_*" 5
 mv out out.gone && touch out
-set +e
-wait "$pid"
-rc=$?
-set -e
+waitrc "$pid"
 [ "$rc" = 1 ] || fail "export failure: exit $rc, expected 1: $(cat err.txt)"
 grep -q "export failed: cannot write 'out/frame_" err.txt || fail "no clear message: $(cat err.txt)"
 rescued=$TMPDIR/rtsph_rescue_dam_break_2d.ckpt
@@ -74,20 +64,14 @@ rm -f "$TMPDIR"/*
 pid=$!
 wait_for ck "ckpt_*.ckpt" 2
 rm -rf ck && touch ck
-set +e
-wait "$pid"
-rc=$?
-set -e
+waitrc "$pid"
 [ "$rc" = 1 ] || fail "checkpoint failure: exit $rc, expected 1: $(cat err.txt)"
 [ -f "$rescued" ] || fail "state not rescued: $(cat err.txt)"
 "$rtsph" run --resume "$rescued" --steps 5 --threads 1 --quiet >/dev/null || fail "rescued state does not resume"
 echo "checkpoint failure: exit 1, state saved to \$TMPDIR: $(head -1 err.txt)"
 
 # 4. An export directory that cannot be created fails before any work, with the path named.
-set +e
-"$rtsph" run dam_break_2d --steps 5 --threads 1 --quiet --export out/sub >/dev/null 2>err.txt
-rc=$?
-set -e
+runrc dam_break_2d --steps 5 --threads 1 --quiet --export out/sub
 [ "$rc" = 1 ] && grep -q "out/sub" err.txt || fail "uncreatable export dir: exit $rc: $(cat err.txt)"
 echo "uncreatable export directory: exit 1: $(cat err.txt)"
 echo "crash_checkpoint: all checks passed"

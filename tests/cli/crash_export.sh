@@ -3,14 +3,11 @@
 # file, index.csv and frames.pvd is complete: writes are atomic (temp file + fsync + rename), so
 # a crash may lose the frame in progress but never leaves a partial one under a final name.
 # Usage: crash_export.sh RTSPH_BINARY SOURCE_DIR
-set -euo pipefail
-rtsph=$1
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
 if ! command -v python3 >/dev/null; then
   echo "crash_export: skipped (python3 not found, needed to parse the output)"
   exit 0
 fi
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
 
 check() {  # check DIR FORMAT
   python3 - "$1" "$2" <<'PY'
@@ -82,7 +79,7 @@ for fmt in csv vtk ply; do
       sleep 0.05
     done
     sleep "0.$((RANDOM % 300))"
-    kill -9 "$pid" 2>/dev/null || { echo "FAIL: rtsph exited before it was killed"; exit 1; }
+    kill -9 "$pid" 2>/dev/null || fail "rtsph exited before it was killed"
     wait "$pid" 2>/dev/null || true
     check "$out" "$fmt"
   done

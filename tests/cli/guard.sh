@@ -3,20 +3,8 @@
 # particle, dt, likely cause), exit code 3 and the last good state saved; --recover halves dt
 # and retries from the last good state instead, up to --max-retries times.
 # Usage: guard.sh RTSPH_BINARY SOURCE_DIR
-set -euo pipefail
-rtsph=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")  # absolute: the script changes directory
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-fail() { echo "FAIL: $*"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
 unstable=(dam_break_2d --set solver.time_step.mode=fixed --set solver.time_step.dt=0.003 --threads 1)
-
-runrc() {  # runrc ARGS...: runs rtsph, stdout > out.txt, stderr > err.txt, exit code in $rc
-  set +e
-  "$rtsph" run "$@" >out.txt 2>err.txt
-  rc=$?
-  set -e
-}
 
 # 1. Without --recover: exit 3, diagnostic, last good state kept.
 runrc "${unstable[@]}" --until 0.3 --quiet

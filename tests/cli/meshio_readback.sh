@@ -4,9 +4,8 @@
 # pip into a venv beside the binary; without python3-venv or the package registry the test is
 # skipped (exit 0 with a message), since it checks interoperability, not rtsph itself.
 # Usage: meshio_readback.sh RTSPH_BINARY SOURCE_DIR
-set -euo pipefail
-rtsph=$1
-venv="$(cd "$(dirname "$rtsph")" && pwd)/meshio-venv"
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
+venv=$(dirname "$rtsph")/meshio-venv
 skip() { echo "meshio_readback: skipped ($1)"; exit 0; }
 
 if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import meshio, numpy" 2>/dev/null; then
@@ -16,16 +15,16 @@ if [ ! -x "$venv/bin/python" ] || ! "$venv/bin/python" -c "import meshio, numpy"
     { rm -rf "$venv"; skip "pip could not install meshio"; }
 fi
 
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+# Frames go under frames/: a directory named like a built-in scene in the current directory
+# would be taken for the scene.
 for scene in dam_break_2d dam_break_3d; do
   for fmt in ply csv; do
     "$rtsph" run "$scene" --until 0.004 --every 0.002 --threads 1 --quiet \
-      --export "$work/$scene/$fmt" --format "$fmt" >/dev/null
+      --export "frames/$scene/$fmt" --format "$fmt" >/dev/null
   done
 done
 
-"$venv/bin/python" - "$work" <<'PY'
+"$venv/bin/python" - "$work/frames" <<'PY'
 import os, sys
 import meshio, numpy as np
 work = sys.argv[1]

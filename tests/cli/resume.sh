@@ -3,12 +3,7 @@
 # bytes (final checkpoint, exported frames, index); damaged, truncated or mismatched
 # checkpoints are refused with a one-line message and exit code 2.
 # Usage: resume.sh RTSPH_BINARY SOURCE_DIR
-set -euo pipefail
-rtsph=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")  # absolute: the script changes directory
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-fail() { echo "FAIL: $*"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
 run() { "$rtsph" run "$@" --threads 1 --quiet >/dev/null; }
 newest() { ls "$1"/ckpt_*.ckpt | tail -1; }
 
@@ -47,10 +42,7 @@ check_scene nozzle_moving_obstacle_2d 0.15 0.3 csv
 good=$(newest w_dam_break_2d/half)
 expect_refused() {  # expect_refused PATTERN ARGS...
   local pattern=$1; shift
-  set +e
-  "$rtsph" run "$@" --threads 1 --quiet >out.txt 2>err.txt
-  local rc=$?
-  set -e
+  runrc "$@" --threads 1 --quiet
   [ "$rc" = 2 ] || fail "run $* exited $rc, expected 2: $(cat err.txt)"
   grep -q -- "$pattern" err.txt || fail "run $*: no '$pattern' in: $(cat err.txt)"
   [ "$(wc -l <err.txt)" = 1 ] || fail "run $*: message is not one line: $(cat err.txt)"
@@ -76,8 +68,10 @@ expect_refused "scene hash mismatch" hydrostatic_2d --resume "$good"
 expect_refused "scene hash mismatch" dam_break_2d --set fluid.spacing=0.03 --resume "$good"
 expect_refused "dimension mismatch" dam_break_3d --resume "$good"
 expect_refused "cannot open" --resume bad/missing.ckpt
-expect_refused "can only change" --resume "$good" --set fluid.spacing=0.01
+expect_refused "can only change fluid.viscosity, .*solver.time_step.dt, .* and end_time" --resume "$good" --set fluid.spacing=0.01
+expect_refused "can only change" --resume "$good" --set gravity=0,-5  # c0 was derived from it
 expect_refused "no ckpt_" --resume bad
-# A live parameter may change on resume.
-run --resume "$good" --set fluid.viscosity=2e-6 --steps 3
+# Live parameters (and end_time) may change on resume.
+run --resume "$good" --set fluid.viscosity=2e-6 --set solver.time_step.mode=fixed --set solver.time_step.dt=2e-4 \
+  --set end_time=5 --steps 3
 echo "resume: all checks passed"

@@ -3,12 +3,7 @@
 # summary, and exits with 130/143. The checkpoint holds exactly the state a run of the same
 # number of steps ends with, and resumes.
 # Usage: signals.sh RTSPH_BINARY SOURCE_DIR
-set -euo pipefail
-rtsph=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")  # absolute: the script changes directory
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-cd "$work"
-fail() { echo "FAIL: $*"; exit 1; }
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
 
 wait_for_frames() {  # wait_for_frames DIR N
   for _ in $(seq 400); do
@@ -29,10 +24,7 @@ for sig in INT TERM; do
     pid=$!
     wait_for_frames "$out" 3
     kill -"$sig" "$pid"
-    set +e
-    wait "$pid"
-    rc=$?
-    set -e
+    waitrc "$pid"
     [ "$rc" = "$want" ] || fail "SIG$sig ($mode): exit $rc, expected $want: $(cat "$out.stderr")"
     grep -q "^status  *interrupted" "$out.stdout" || fail "SIG$sig ($mode): no summary: $(cat "$out.stdout")"
     grep -q "stopped by SIG$sig" "$out.stderr" || fail "SIG$sig ($mode): no message: $(cat "$out.stderr")"

@@ -84,7 +84,7 @@ std::vector<Vec3d> sample_fluid(const SimSpec& s) {
       Vec3d p{};
       for (int k = 0; k < s.dimension; ++k) p[k] = b.min[k] + (double(i[k]) + 0.5) * s.spacing;
       for (std::size_t o = 0; o < s.obstacles.size(); ++o)
-        if (obstacle_distance(s.obstacles[o], poses[o], p, s.dimension) < s.spacing) return;
+        if (obstacle_distance(s.obstacles[o], poses[o], p, s.dimension) < 0.5 * s.spacing) return;
       out.push_back(p);
     });
   }
@@ -156,8 +156,17 @@ std::vector<BoundarySample> sample_obstacles(const SimSpec& s) {
   const int L = std::max(1, s.boundary_layers);
   for (std::size_t o = 0; o < s.obstacles.size(); ++o) {
     const auto& ob = s.obstacles[o];
+    // Layers sit (l + ½)·spacing inside the surface, as the wall layers sit outside the domain:
+    // the fluid then stops at the obstacle's stated size, one spacing from the samples. A shape
+    // too thin for that keeps one layer on its surface.
+    double min_half = ob.radius;
+    if (ob.shape == ObstacleShape::Box) {
+      min_half = ob.half_extents[0];
+      for (int k = 1; k < s.dimension; ++k) min_half = std::min(min_half, ob.half_extents[k]);
+    }
+    const double first = min_half - 0.5 * s.spacing > 0.25 * s.spacing ? 0.5 * s.spacing : 0.0;
     for (int l = 0; l < L; ++l) {
-      const double inset = l * s.spacing;
+      const double inset = first + l * s.spacing;
       if (ob.shape == ObstacleShape::Box) {
         Vec3d he = ob.half_extents - Vec3d::splat(inset);
         bool ok = true;

@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "gl_test_context.h"
 #include "render/gl_context.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
@@ -29,11 +30,7 @@ struct Px {
 class RenderGl : public ::testing::TestWithParam<ParticlePrimitive> {
  protected:
   void SetUp() override {
-    std::string err;
-    bool no_display = false;
-    ctx_ = HeadlessContext::create(&err, &no_display);
-    if (!ctx_ && no_display) GTEST_SKIP() << err;
-    ASSERT_TRUE(ctx_) << err;
+    RTSPH_HEADLESS_CONTEXT_OR_SKIP(ctx_);
     renderer_ = std::make_unique<Renderer>();
   }
   void TearDown() override {

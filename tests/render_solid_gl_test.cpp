@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "gl_test_context.h"
 #include "render/gl_context.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
@@ -64,11 +65,7 @@ SolidShape box(Vec3f c, Vec3f he, float angle_z = 0) {
 class RenderSolid : public ::testing::Test {
  protected:
   void SetUp() override {
-    std::string err;
-    bool no_display = false;
-    ctx_ = HeadlessContext::create(&err, &no_display);
-    if (!ctx_ && no_display) GTEST_SKIP() << err;
-    ASSERT_TRUE(ctx_) << err;
+    RTSPH_HEADLESS_CONTEXT_OR_SKIP(ctx_);
     renderer_ = std::make_unique<Renderer>();
     s_.grid = s_.walls = s_.legend = false;
   }

@@ -6,6 +6,7 @@
 #include <set>
 #include <string>
 
+#include "gl_test_context.h"
 #include "render/gl_context.h"
 #include "render/renderer.h"
 #include "render/shader.h"
@@ -13,11 +14,8 @@
 using namespace rtsph::render;
 
 TEST(Shaders, EveryEmbeddedShaderCompiles) {
-  std::string err;
-  bool no_display = false;
-  auto ctx = HeadlessContext::create(&err, &no_display);
-  if (!ctx && no_display) GTEST_SKIP() << err;
-  ASSERT_TRUE(ctx) << err;
+  std::unique_ptr<HeadlessContext> ctx;
+  RTSPH_HEADLESS_CONTEXT_OR_SKIP(ctx);
   auto names = shader_names();
   ASSERT_GE(names.size(), 6u);
   for (const auto& n : names) {
@@ -41,11 +39,8 @@ TEST(Shaders, EveryFileInTheFolderIsEmbedded) {
 }
 
 TEST(Shaders, BrokenSourceReportsTheLog) {
-  std::string err;
-  bool no_display = false;
-  auto ctx = HeadlessContext::create(&err, &no_display);
-  if (!ctx && no_display) GTEST_SKIP() << err;
-  ASSERT_TRUE(ctx) << err;
+  std::unique_ptr<HeadlessContext> ctx;
+  RTSPH_HEADLESS_CONTEXT_OR_SKIP(ctx);
   try {
     compile_shader(GL_FRAGMENT_SHADER, "broken.frag", "#version 430 core\nvoid main() { x = 1; }\n");
     FAIL() << "expected a compile error";

@@ -9,7 +9,7 @@ preset="${1:-release}"
 pkgs=(build-essential cmake ninja-build pkg-config libepoxy-dev libegl-dev libgl1-mesa-dri
       libegl-mesa0 libglfw3-dev libglm-dev libimgui-dev libstb-dev xvfb xauth
       nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev libfmt-dev ffmpeg
-      glslang-tools)
+      glslang-tools ccache)
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")
@@ -23,5 +23,7 @@ if ((${#missing[@]})); then
   $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
 fi
 
+# Paths relative to the clone, so a fresh clone elsewhere (CI) hits the same cache entries.
+export CCACHE_BASEDIR="$PWD" CCACHE_NOHASHDIR=true
 cmake --preset "$preset" >/dev/null
 cmake --build --preset "$preset"

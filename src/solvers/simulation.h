@@ -19,6 +19,7 @@ struct StageTimes {
 };
 
 struct SimStats {
+  std::string method;                   // solver method name ("wcsph", "pbf", "dfsph")
   std::size_t fluid_particles = 0, boundary_particles = 0;
   std::uint64_t steps = 0;
   double time_s = 0, dt_s = 0;
@@ -26,6 +27,11 @@ struct SimStats {
   double h = 0;                         // m, smoothing length
   double density_error = 0;             // max (ρ-ρ0)/ρ0 over fluid, last step
   double max_density_error = 0;         // the same, maximum over the run
+  double mean_density_error = 0;        // mean of max(0, (ρ-ρ0)/ρ0) over fluid, last step
+  // Iterative methods: iterations of the last step and their mean over the run. "pressure" is
+  // PBF's constraint solve or DFSPH's constant-density solve; "divergence" DFSPH's other solve.
+  int pressure_iterations = 0, divergence_iterations = 0;
+  double mean_pressure_iterations = 0, mean_divergence_iterations = 0;
   std::uint64_t particles_put_back = 0; // escaped the domain and were put back inside
   double kinetic_energy_j = 0, potential_energy_j = 0;
   double max_speed = 0;                 // m/s
@@ -79,6 +85,10 @@ class Simulation {
     p.center = obstacle_center(index);
     return p;
   }
+  /// Non-empty when the method's own solver failed in the last step, e.g. "DFSPH density solve
+  /// did not converge in 100 iterations (mean density error 0.8%)". The instability guard
+  /// reports it.
+  virtual std::string solver_failure() const { return {}; }
   /// Applies parameters that are safe to change while running (viscosity, α, CFL, gravity…).
   virtual void set_live_parameters(const SimSpec& s) = 0;
 
@@ -90,7 +100,7 @@ class Simulation {
   virtual void state_loaded() = 0;
 };
 
-/// Creates the solver named by spec.method ("wcsph"). threads = 0 uses all hardware threads.
+/// Creates the solver named by spec.method ("wcsph", "pbf", "dfsph"). threads = 0 uses all hardware threads.
 /// Throws std::invalid_argument for an unknown method and std::length_error for a scene that
 /// would not fit in memory.
 std::unique_ptr<Simulation> make_simulation(const SimSpec& spec, int threads);

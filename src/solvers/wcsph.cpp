@@ -2,251 +2,79 @@
 
 #include <algorithm>
 #include <cmath>
-#include <stdexcept>
 
 #include "core/timer.h"
 
 namespace rtsph {
 
 template <int D>
-Wcsph<D>::Wcsph(const SimSpec& spec, int threads) : spec_(spec), pool_(threads) {
-  if (spec.dimension != D) throw std::invalid_argument("dimension mismatch");
-  resolve_parameters();
-  const auto fluid = sample_fluid(spec_);
-  const auto counts = count_particles(spec_);
-  fluid_.reserve(fluid.size() + std::size_t(counts.emitted_max));
-  for (const auto& p : fluid) {
-    Vec3d v{};
-    for (const auto& b : spec_.fluid_blocks) {
-      bool inside = true;
-      for (int k = 0; k < D; ++k) inside &= p[k] >= b.min[k] && p[k] <= b.max[k];
-      if (inside) { v = b.velocity; break; }
-    }
-    add_fluid_particle(truncate<D>(p), truncate<D>(v));
-  }
-  for (const auto& e : spec_.emitters) emitters_.push_back({e.start_s, 0.0});
-  for (const auto& o : spec_.obstacles) {
-    ObstacleState st;
-    st.pose = obstacle_pose(o, 0.0);
-    st.velocity = o.motion == MotionKind::Velocity ? o.velocity : Vec3d{};
-    st.angular_velocity = o.motion == MotionKind::Velocity ? o.angular_velocity : Vec3d{};
-    obstacles_.push_back(st);
-    boundary_moving_ |= o.motion != MotionKind::Static;
-  }
-  build_boundary();
+Wcsph<D>::Wcsph(const SimSpec& spec, int threads) : W(spec, threads) {
   update_forces();
-  reset_stage_times();
+  this->reset_stage_times();
 }
 
-template <int D>
-void Wcsph<D>::resolve_parameters() {
-  const SimSpec& s = spec_;
-  prm_.h = s.smoothing_ratio * s.spacing;
-  prm_.support = support_ratio(s.kernel) * prm_.h;
-  prm_.rho0 = s.rest_density;
-  prm_.domain_min = s.domain_min;
-  prm_.domain_max = s.domain_max;
-  // Mass so that a particle inside the initial lattice sits exactly at ρ0: m = ρ0 / Σ_j W(x_ij).
-  const double spacing = s.spacing;
-  const int reach = int(std::ceil(prm_.support / spacing));
-  double lattice_sum = 0;
-  with_kernel<D>(s.kernel, prm_.h, [&](const auto& K) {
-    for (int z = (D == 3 ? -reach : 0); z <= (D == 3 ? reach : 0); ++z)
-      for (int y = -reach; y <= reach; ++y)
-        for (int x = -reach; x <= reach; ++x) {
-          const double r2 = (double(x) * x + double(y) * y + double(z) * z) * spacing * spacing;
-          lattice_sum += double(K.value(float(r2)));
-        }
-  });
-  prm_.mass = prm_.rho0 / lattice_sum;
-  // Speed of sound: ten times the fastest expected flow keeps density errors near 1%
-  // (Monaghan 1994); the fastest flow is a fall through the fluid height, a block's initial
-  // velocity or an emitter's jet.
-  double vmax = 0;
-  const double g = norm(s.gravity);
-  for (const auto& b : s.fluid_blocks) {
-    double height = 0;
-    if (g > 0) {
-      const Vec3d gh = s.gravity / g;
-      for (int k = 0; k < D; ++k) height += std::abs(gh[k]) * (b.max[k] - b.min[k]);
-    }
-    vmax = std::max({vmax, std::sqrt(2 * g * height), norm(b.velocity)});
-  }
-  for (const auto& e : s.emitters) vmax = std::max(vmax, e.speed + std::sqrt(2 * g * (s.domain_max[1] - s.domain_min[1])));
-  for (const auto& o : s.obstacles) vmax = std::max(vmax, norm(o.velocity));
-  if (vmax <= 0) vmax = 1.0;
-  prm_.c0 = s.speed_of_sound > 0 ? s.speed_of_sound : 10.0 * vmax;
-  if (s.eos == Eos::Linear) {
-    // p = k(ρ - ρ0) has dp/dρ = k, so its sound speed is √k.
-    prm_.stiffness = s.stiffness > 0 ? s.stiffness : prm_.c0 * prm_.c0;
-    prm_.c0 = std::sqrt(prm_.stiffness);
-  }
-  prm_.tait_b = prm_.rho0 * prm_.c0 * prm_.c0 / s.tait_gamma;
-}
-
-template <int D>
-void Wcsph<D>::add_fluid_particle(const Vec<D>& x, const Vec<D>& v) {
-  const std::size_t i = fluid_.size();
-  fluid_.resize(i + 1);
-  fluid_.set_pos(i, x);
-  fluid_.set_vel(i, v);
-  for (int k = 0; k < D; ++k) fluid_.a[k][i] = Real(spec_.gravity[k]);
-  fluid_.rho[i] = Real(prm_.rho0);
-  fluid_.p[i] = 0;
-  fluid_.id[i] = next_id_++;
-}
-
-// ---------------------------------------------------------------------------------------------
 // One step: kick-drift-kick leapfrog (velocity Verlet), symplectic and second order.
 template <int D>
 void Wcsph<D>::step() {
   const double dt = choose_time_step();  // CFL, force and viscous limits (Monaghan 1992)
   {
-    ScopedTimer timer(times_.integrate_s);
-    kick(0.5 * dt);                   // v(t+dt/2) = v(t) + a(t) dt/2
-    drift(dt);                        // x(t+dt) = x(t) + v(t+dt/2) dt
-    move_obstacles(time_ + dt, dt);   // prescribed or user-driven rigid motion
-    emit_particles(time_ + dt);       // nozzle layers due by t+dt
-    put_back_escaped();               // no particle is ever lost
+    ScopedTimer timer(this->times_.integrate_s);
+    this->kick(0.5 * dt);                         // v(t+dt/2) = v(t) + a(t) dt/2
+    this->drift(dt);                              // x(t+dt) = x(t) + v(t+dt/2) dt
+    this->advance_scene(this->time_ + dt, dt);    // obstacles, emitters, put-back
   }
-  update_forces();                    // a(t+dt) from x(t+dt), v(t+dt/2)
+  update_forces();                                // a(t+dt) from x(t+dt), v(t+dt/2)
   {
-    ScopedTimer timer(times_.integrate_s);
-    kick(0.5 * dt);                   // v(t+dt) = v(t+dt/2) + a(t+dt) dt/2
+    ScopedTimer timer(this->times_.integrate_s);
+    this->kick(0.5 * dt);                         // v(t+dt) = v(t+dt/2) + a(t+dt) dt/2
   }
-  time_ += dt;
-  dt_ = dt;
-  ++steps_;
+  this->time_ += dt;
+  this->dt_ = dt;
+  ++this->steps_;
 }
 
 template <int D>
 void Wcsph<D>::update_forces() {
+  this->update_neighbours();
   {
-    ScopedTimer timer(times_.neighbours_s);
-    sort_fluid_by_cell();  // counting sort, arrays reordered by cell (Ihmsen et al. 2011)
-    if (boundary_moving_) sort_boundary_by_cell();
+    ScopedTimer timer(this->times_.density_s);
+    this->compute_density();                // ρᵢ = Σⱼ mⱼ Wᵢⱼ + Σ_b Ψ_b W_ib (Akinci 2012, eq. 6)
+    compute_pressure();                     // Tait (Becker & Teschner 2007) or p = k(ρ - ρ0)
+    this->extrapolate_boundary_pressure();  // wall pressure (Adami et al. 2012, eq. 27)
   }
   {
-    ScopedTimer timer(times_.density_s);
-    compute_density();     // ρᵢ = Σⱼ mⱼ Wᵢⱼ + Σ_b Ψ_b W_ib (Akinci et al. 2012, eq. 6)
-    compute_pressure();    // Tait (Becker & Teschner 2007) or the linear law p = k(ρ - ρ0)
-    extrapolate_boundary_pressure();  // wall pressure from the fluid (Adami et al. 2012, eq. 27)
-  }
-  {
-    ScopedTimer timer(times_.forces_s);
-    compute_accelerations();  // pressure, viscosity, gravity, brush
+    ScopedTimer timer(this->times_.forces_s);
+    // Symmetric pressure (Monaghan 1992), viscosity, gravity, brush: one pair loop.
+    this->accelerations({.pressure = this->ctx_.p_over_rho2.data(),
+                         .boundary_pressure = this->ctx_.boundary_p_over_rho2.data()});
   }
 }
 
+// dt = min(cfl·h/(c0 + |v|max), 0.25·√(h/|a|max), 0.125·h²/ν), at most max_dt.
 template <int D>
 double Wcsph<D>::choose_time_step() const {
-  if (spec_.time_step_mode == TimeStepMode::Fixed) return spec_.dt;
-  struct Max {
-    double v2 = 0, a2 = 0;
-    Max& operator+=(const Max& o) { v2 = std::max(v2, o.v2); a2 = std::max(a2, o.a2); return *this; }
-  };
-  const Max m = pool_.parallel_reduce(fluid_.size(), Max{}, [&](std::size_t b, std::size_t e) {
-    Max r;
-    for (std::size_t i = b; i < e; ++i) {
-      double v2 = 0, a2 = 0;
-      for (int k = 0; k < D; ++k) {
-        v2 += double(fluid_.v[k][i]) * fluid_.v[k][i];
-        a2 += double(fluid_.a[k][i]) * fluid_.a[k][i];
-      }
-      r.v2 = std::max(r.v2, v2);
-      r.a2 = std::max(r.a2, a2);
-    }
-    return r;
-  });
-  const double h = prm_.h;
-  double dt = spec_.max_dt;
-  dt = std::min(dt, spec_.cfl * h / (prm_.c0 + std::sqrt(m.v2)));
+  const SimSpec& s = this->spec_;
+  if (s.time_step_mode == TimeStepMode::Fixed) return s.dt;
+  const auto m = this->max_speed_and_acceleration();
+  const double h = this->prm_.h;
+  double dt = std::min(s.max_dt, s.cfl * h / (this->prm_.c0 + std::sqrt(m.v2)));
   if (m.a2 > 0) dt = std::min(dt, 0.25 * std::sqrt(h / std::sqrt(m.a2)));
-  // Artificial viscosity acts like ν = α c0 h / (2(D+2)) (Monaghan 2005).
-  const double nu = std::max(spec_.viscosity,
-                             spec_.artificial_viscosity * prm_.c0 * h / (2.0 * (D + 2)));
-  if (nu > 0) dt = std::min(dt, 0.125 * h * h / nu);
-  return dt;
-}
-
-template <int D>
-void Wcsph<D>::kick(double dt) {
-  const Real hdt = Real(dt);
-  pool_.parallel_for(fluid_.size(), [&](std::size_t b, std::size_t e) {
-    for (int k = 0; k < D; ++k) {
-      Real* v = fluid_.v[k].data();
-      const Real* a = fluid_.a[k].data();
-      for (std::size_t i = b; i < e; ++i) v[i] += a[i] * hdt;
-    }
-  });
-}
-
-template <int D>
-void Wcsph<D>::drift(double dt) {
-  const Real fdt = Real(dt);
-  pool_.parallel_for(fluid_.size(), [&](std::size_t b, std::size_t e) {
-    for (int k = 0; k < D; ++k) {
-      Real* x = fluid_.x[k].data();
-      const Real* v = fluid_.v[k].data();
-      for (std::size_t i = b; i < e; ++i) x[i] += v[i] * fdt;
-    }
-  });
-}
-
-template <int D>
-void Wcsph<D>::put_back_escaped() {
-  // A particle that crossed a container wall is returned a quarter spacing inside and loses
-  // its outward velocity. NaN positions fail both comparisons and are put back too.
-  const Real margin = Real(0.25 * spec_.spacing);
-  Real lo[D], hi[D];
-  for (int k = 0; k < D; ++k) {
-    lo[k] = Real(prm_.domain_min[k]);
-    hi[k] = Real(prm_.domain_max[k]);
-  }
-  put_back_ += pool_.parallel_reduce(fluid_.size(), std::uint64_t(0), [&](std::size_t b, std::size_t e) {
-    std::uint64_t count = 0;
-    for (std::size_t i = b; i < e; ++i) {
-      bool moved = false;
-      for (int k = 0; k < D; ++k) {
-        Real& x = fluid_.x[k][i];
-        Real& v = fluid_.v[k][i];
-        if (!(x >= lo[k])) { x = lo[k] + margin; v = std::max(v, Real(0)); moved = true; }
-        else if (!(x <= hi[k])) { x = hi[k] - margin; v = std::min(v, Real(0)); moved = true; }
-        if (!std::isfinite(v)) v = 0;
-      }
-      count += moved;
-    }
-    return count;
-  });
-}
-
-template <int D>
-void Wcsph<D>::sort_fluid_by_cell() {
-  const Real* xs[D];
-  for (int k = 0; k < D; ++k) xs[k] = fluid_.x[k].data();
-  ctx_.fluid_grid.build(xs, fluid_.size(), pool_);
-  fluid_.permute_kinematics(ctx_.fluid_grid.order(), ctx_.spare, pool_);
-}
-
-template <int D>
-void Wcsph<D>::sort_boundary_by_cell() {
-  const Real* xs[D];
-  for (int k = 0; k < D; ++k) xs[k] = boundary_.x[k].data();
-  ctx_.boundary_grid.build(xs, boundary_.size(), pool_);
-  boundary_.permute(ctx_.boundary_grid.order(), ctx_.tmp, pool_);
+  return std::min(dt, this->viscous_dt_limit());
 }
 
 template <int D>
 void Wcsph<D>::compute_pressure() {
-  const double rho0 = prm_.rho0, B = prm_.tait_b, k = prm_.stiffness, gamma = spec_.tait_gamma;
-  const bool tait = spec_.eos == Eos::Tait, clamp = spec_.clamp_negative_pressure;
-  const std::size_t n = fluid_.size();
-  ctx_.p_over_rho2.resize(n);
-  ctx_.inv_rho.resize(n);
-  density_error_ = pool_.parallel_reduce(n, MaxOf<double>{0.0}, [&](std::size_t b, std::size_t e) {
-    MaxOf<double> err{0.0};
+  const auto& prm = this->prm_;
+  const double rho0 = prm.rho0, B = prm.tait_b, k = prm.stiffness, gamma = this->spec_.tait_gamma;
+  const bool tait = this->spec_.eos == Eos::Tait, clamp = this->spec_.clamp_negative_pressure;
+  auto& fluid = this->fluid_;
+  auto& ctx = this->ctx_;
+  const std::size_t n = fluid.size();
+  ctx.p_over_rho2.resize(n);
+  ctx.inv_rho.resize(n);
+  this->pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
-      const double rho = fluid_.rho[i], x = rho / rho0;
+      const double rho = fluid.rho[i], x = rho / rho0;
       double p;
       if (tait) {
         const double x7 = gamma == 7.0 ? x * x * x * x * x * x * x : std::pow(x, gamma);
@@ -255,14 +83,12 @@ void Wcsph<D>::compute_pressure() {
         p = k * (rho - rho0);
       }
       if (clamp && p < 0) p = 0;
-      fluid_.p[i] = Real(p);
-      ctx_.p_over_rho2[i] = Real(p / (rho * rho));
-      ctx_.inv_rho[i] = Real(1.0 / rho);
-      err.value = std::max(err.value, x - 1.0);
+      fluid.p[i] = Real(p);
+      ctx.p_over_rho2[i] = Real(p / (rho * rho));
+      ctx.inv_rho[i] = Real(1.0 / rho);
     }
-    return err;
-  }).value;
-  max_density_error_ = std::max(max_density_error_, density_error_);
+  });
+  this->measure_density_error();
 }
 
 template class Wcsph<2>;

@@ -1,10 +1,12 @@
-// The particle sums of WCSPH: density and accelerations. Each fluid particle gathers from its
+// The particle sums every method shares: density, boundary volumes and pressure, and the
+// acceleration sum (pressure, viscosity, external forces). Each fluid particle gathers from its
 // neighbours in a fixed order (cell ranges, then 8-lane batches, then a fixed lane reduction),
 // so results are bitwise identical for any thread count.
 #include <cmath>
+#include <stdexcept>
 
 #include "core/pair_loop.h"
-#include "solvers/wcsph.h"
+#include "solvers/fluid_world.h"
 
 namespace rtsph {
 
@@ -12,7 +14,7 @@ using simd::f8;
 using simd::i8;
 
 template <int D>
-void Wcsph<D>::compute_density() {
+void FluidWorld<D>::compute_density() {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
   const Real* fx[D];
@@ -49,8 +51,22 @@ void Wcsph<D>::compute_density() {
 //      + g + brush
 // with vᵢⱼ = vᵢ − vⱼ (so viscosity pulls vᵢ towards vⱼ) and Monaghan's artificial viscosity
 // Πᵢⱼ = −α c0 h (vᵢⱼ·rᵢⱼ) / (ρ̄ᵢⱼ (r² + 0.01h²)) for approaching pairs only.
+//
+// Each term is a template flag, so a method asking for a subset (DFSPH: viscosity and external
+// forces, then pressure alone in its solver loops) pays only for what it uses.
 template <int D>
-void Wcsph<D>::compute_accelerations() {
+void FluidWorld<D>::accelerations(const ForceTerms& t) {
+  const bool p = t.pressure != nullptr;
+  if (p && t.viscosity && t.external) return accelerations_impl<true, true, true>(t);
+  if (p && !t.viscosity && !t.external) return accelerations_impl<true, false, false>(t);
+  if (!p && t.viscosity && t.external) return accelerations_impl<false, true, true>(t);
+  if (!p && !t.viscosity && t.external) return accelerations_impl<false, false, true>(t);
+  throw std::logic_error("accelerations: unsupported combination of force terms");
+}
+
+template <int D>
+template <bool kPressure, bool kViscosity, bool kExternal>
+void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
   const Real eps = Real(0.01 * prm_.h * prm_.h);
@@ -65,9 +81,9 @@ void Wcsph<D>::compute_accelerations() {
     bx[k] = boundary_.x[k].data(); bv[k] = boundary_.v[k].data();
   }
   const Real* psi = boundary_.psi.data();
-  const Real* Pb = ctx_.boundary_p_over_rho2.data();
+  const Real* Pb = terms.boundary_pressure;
   const Real* rho = fluid_.rho.data();
-  const Real* P = ctx_.p_over_rho2.data();
+  const Real* P = terms.pressure;
   const Real* inv_rho = ctx_.inv_rho.data();
   const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
   Real g[D];
@@ -80,8 +96,9 @@ void Wcsph<D>::compute_accelerations() {
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D], vi[D];
         for (int k = 0; k < D; ++k) { xi[k] = fx[k][i]; vi[k] = fv[k][i]; }
-        const Real rhoi = rho[i], Pi = P[i], iri = inv_rho[i];
+        const Real rhoi = rho[i], Pi = kPressure ? P[i] : Real(0), iri = kViscosity ? inv_rho[i] : Real(0);
         f8 acc[D] = {};
+        if constexpr (kPressure || kViscosity) {
         for_each_candidate_batch<D>(
             ctx_.fluid_grid, cells[i], fx, xi, support2, [&](uint32_t j, const f8* d, f8 r2, i8 m) {
               const f8 G = K.grad_factor(r2);  // ∇W = G · d
@@ -90,12 +107,16 @@ void Wcsph<D>::compute_accelerations() {
                 vij[k] = vi[k] - simd::load(fv[k] + j);
                 vr += vij[k] * d[k];
               }
-              const f8 rhoj = simd::load(rho + j);
-              const f8 inv = simd::rcp(r2 + eps);
-              const f8 pi_visc = simd::select(vr < 0.0f, -ach * vr * inv * 2.0f * simd::rcp(rhoi + rhoj), f8{});
-              const f8 s = simd::select(m, -mass * (Pi + simd::load(P + j) + pi_visc) * G, f8{});
-              const f8 lam = simd::select(m, mass * nu * (iri + simd::load(inv_rho + j)) * G * r2 * inv, f8{});
-              for (int k = 0; k < D; ++k) acc[k] += s * d[k] + lam * vij[k];
+              f8 pij = f8{}, lam = f8{};
+              if constexpr (kPressure) pij = Pi + simd::load(P + j);
+              if constexpr (kViscosity) {
+                const f8 rhoj = simd::load(rho + j);
+                const f8 inv = simd::rcp(r2 + eps);
+                pij += simd::select(vr < 0.0f, -ach * vr * inv * 2.0f * simd::rcp(rhoi + rhoj), f8{});
+                lam = simd::select(m, mass * nu * (iri + simd::load(inv_rho + j)) * G * r2 * inv, f8{});
+              }
+              const f8 s = simd::select(m, -mass * pij * G, f8{});
+              for (int k = 0; k < D; ++k) acc[k] += kViscosity ? s * d[k] + lam * vij[k] : s * d[k];
             });
         // Boundary neighbours mirror the fluid particle's pressure and density (ρ_b = ρᵢ).
         for_each_candidate_batch<D>(
@@ -107,15 +128,20 @@ void Wcsph<D>::compute_accelerations() {
                 vr += vib[k] * d[k];
               }
               const f8 w = simd::load(psi + j);
-              const f8 inv = simd::rcp(r2 + eps);
-              const f8 pi_visc = simd::select(vr < 0.0f, -ach * vr * inv * iri, f8{});
-              const f8 s = simd::select(m, -w * (Pi + simd::load(Pb + j) + pi_visc) * G, f8{});
-              const f8 lam = simd::select(m, w * nu * (2.0f * iri) * G * r2 * inv, f8{});
-              for (int k = 0; k < D; ++k) acc[k] += s * d[k] + lam * vib[k];
+              f8 pib = f8{}, lam = f8{};
+              if constexpr (kPressure) pib = Pi + (Pb ? simd::load(Pb + j) : f8{});
+              if constexpr (kViscosity) {
+                const f8 inv = simd::rcp(r2 + eps);
+                pib += simd::select(vr < 0.0f, -ach * vr * inv * iri, f8{});
+                lam = simd::select(m, w * nu * (2.0f * iri) * G * r2 * inv, f8{});
+              }
+              const f8 s = simd::select(m, -w * pib * G, f8{});
+              for (int k = 0; k < D; ++k) acc[k] += kViscosity ? s * d[k] + lam * vib[k] : s * d[k];
             });
+        }
         Real ai[D];
-        for (int k = 0; k < D; ++k) ai[k] = simd::hsum(acc[k]) + g[k];
-        if (brush.active) {
+        for (int k = 0; k < D; ++k) ai[k] = simd::hsum(acc[k]) + (kExternal ? g[k] : Real(0));
+        if (kExternal && brush.active) {
           Vec<D> r;
           for (int k = 0; k < D; ++k) r[k] = xi[k] - brush_c[k];
           const Real dist = norm(r);
@@ -133,7 +159,7 @@ void Wcsph<D>::compute_accelerations() {
 // p_b = (Σ_f p_f W_bf + (g − a_b)·Σ_f ρ_f (x_b − x_f) W_bf) / Σ_f W_bf   (Adami et al. 2012)
 // a_b (the wall's acceleration) is neglected: obstacles move at prescribed, slowly varying speed.
 template <int D>
-void Wcsph<D>::extrapolate_boundary_pressure() {
+void FluidWorld<D>::extrapolate_boundary_pressure() {
   const std::size_t n = boundary_.size();
   ctx_.boundary_p_over_rho2.resize(n);
   const Real support2 = Real(prm_.support * prm_.support);
@@ -212,7 +238,7 @@ double flat_wall_calibration(const Kernel& K, double s, int layers, double suppo
 // Ψ_b = γ ρ0 / Σ_k W_bk over the boundary particles of the same body (Akinci et al. 2012,
 // eq. 4-5), with γ from flat_wall_calibration. Rigid motion keeps Ψ constant.
 template <int D>
-void Wcsph<D>::compute_boundary_psi() {
+void FluidWorld<D>::compute_boundary_psi() {
   const std::size_t n = boundary_.size();
   const Real support2 = Real(prm_.support * prm_.support);
   const Real* bx[D];
@@ -242,10 +268,10 @@ void Wcsph<D>::compute_boundary_psi() {
 }
 
 #define RTSPH_INSTANTIATE(D)                          \
-  template void Wcsph<D>::compute_density();          \
-  template void Wcsph<D>::compute_accelerations();    \
-  template void Wcsph<D>::extrapolate_boundary_pressure(); \
-  template void Wcsph<D>::compute_boundary_psi();
+  template void FluidWorld<D>::compute_density();          \
+  template void FluidWorld<D>::accelerations(const ForceTerms&); \
+  template void FluidWorld<D>::extrapolate_boundary_pressure(); \
+  template void FluidWorld<D>::compute_boundary_psi();
 RTSPH_INSTANTIATE(2)
 RTSPH_INSTANTIATE(3)
 #undef RTSPH_INSTANTIATE

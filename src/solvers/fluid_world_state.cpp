@@ -1,12 +1,12 @@
-// Read access, statistics and checkpoint state of WCSPH.
+// Read access, statistics and checkpoint state of the shared fluid world.
 #include <cstring>
 
-#include "solvers/wcsph.h"
+#include "solvers/fluid_world.h"
 
 namespace rtsph {
 
 template <int D>
-ParticleView Wcsph<D>::fluid() const {
+ParticleView FluidWorld<D>::fluid() const {
   ParticleView v;
   v.dim = D;
   v.count = fluid_.size();
@@ -18,7 +18,7 @@ ParticleView Wcsph<D>::fluid() const {
 }
 
 template <int D>
-BoundaryView Wcsph<D>::boundary() const {
+BoundaryView FluidWorld<D>::boundary() const {
   BoundaryView v;
   v.dim = D;
   v.count = boundary_.size();
@@ -28,7 +28,7 @@ BoundaryView Wcsph<D>::boundary() const {
 }
 
 template <int D>
-SimStats Wcsph<D>::stats() const {
+SimStats FluidWorld<D>::stats() const {
   SimStats s;
   s.fluid_particles = fluid_.size();
   s.boundary_particles = boundary_.size();
@@ -37,7 +37,9 @@ SimStats Wcsph<D>::stats() const {
   s.dt_s = dt_;
   s.c0 = prm_.c0;
   s.h = prm_.h;
+  s.method = spec_.method;
   s.density_error = density_error_;
+  s.mean_density_error = mean_density_error_;
   s.max_density_error = max_density_error_;
   s.particles_put_back = put_back_;
   struct Energy {
@@ -65,16 +67,21 @@ SimStats Wcsph<D>::stats() const {
   s.potential_energy_j = e.pe;
   s.max_speed = std::sqrt(e.v2max);
   s.bytes = fluid_.bytes() + boundary_.bytes() + ctx_.bytes();
+  for (const auto& f : method_fields_) s.bytes += f.array->bytes();
+  add_method_stats(s);
   return s;
 }
 
 // Checkpoint layout: every array and scalar step() reads. Boundary particles are included
 // because moving obstacles change them; grids and scratch are rebuilt by state_loaded().
 template <int D>
-void Wcsph<D>::prepare_state(std::size_t fluid_count) { fluid_.resize(fluid_count); }
+void FluidWorld<D>::prepare_state(std::size_t fluid_count) {
+  fluid_.resize(fluid_count);
+  for (auto& f : method_fields_) f.array->resize(fluid_count);
+}
 
 template <int D>
-std::vector<StateField> Wcsph<D>::state_fields() {
+std::vector<StateField> FluidWorld<D>::state_fields() {
   std::vector<StateField> f;
   auto arr = [&](const std::string& name, auto& a) {
     f.push_back({name, static_cast<void*>(a.data()), a.size() * sizeof(a[0])});
@@ -103,14 +110,18 @@ std::vector<StateField> Wcsph<D>::state_fields() {
   scalar("next_id", next_id_);
   scalar("density_error", density_error_);
   scalar("max_density_error", max_density_error_);
+  scalar("mean_density_error", mean_density_error_);
   scalar("boundary_moving", boundary_moving_);
   f.push_back({"emitters", emitters_.data(), emitters_.size() * sizeof(EmitterState)});
   f.push_back({"obstacles", obstacles_.data(), obstacles_.size() * sizeof(ObstacleState)});
+  for (auto& m : method_fields_)
+    if (m.saved) arr("method." + m.name, *m.array);
+  add_method_scalars(f);
   return f;
 }
 
 template <int D>
-void Wcsph<D>::state_loaded() {
+void FluidWorld<D>::state_loaded() {
   // Rebuild the grids for the loaded order without reordering: the arrays were saved sorted,
   // and resorting here could permute particles within a cell differently than a straight run.
   const Real* xs[D];
@@ -120,19 +131,19 @@ void Wcsph<D>::state_loaded() {
 }
 
 template <int D>
-Pose Wcsph<D>::obstacle_transform(int index) const {
+Pose FluidWorld<D>::obstacle_transform(int index) const {
   if (index < 0 || index >= int(obstacles_.size())) return {};
   return obstacles_[index].pose;
 }
 
 #define RTSPH_INSTANTIATE(D)                                            \
-  template ParticleView Wcsph<D>::fluid() const;                        \
-  template BoundaryView Wcsph<D>::boundary() const;                     \
-  template SimStats Wcsph<D>::stats() const;                            \
-  template void Wcsph<D>::prepare_state(std::size_t);                   \
-  template std::vector<StateField> Wcsph<D>::state_fields();            \
-  template void Wcsph<D>::state_loaded();                               \
-  template Pose Wcsph<D>::obstacle_transform(int) const;
+  template ParticleView FluidWorld<D>::fluid() const;                        \
+  template BoundaryView FluidWorld<D>::boundary() const;                     \
+  template SimStats FluidWorld<D>::stats() const;                            \
+  template void FluidWorld<D>::prepare_state(std::size_t);                   \
+  template std::vector<StateField> FluidWorld<D>::state_fields();            \
+  template void FluidWorld<D>::state_loaded();                               \
+  template Pose FluidWorld<D>::obstacle_transform(int) const;
 RTSPH_INSTANTIATE(2)
 RTSPH_INSTANTIATE(3)
 #undef RTSPH_INSTANTIATE

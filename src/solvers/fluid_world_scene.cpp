@@ -1,13 +1,13 @@
-// Scene-driven parts of WCSPH: boundary construction, obstacle motion, emitters, interaction.
+// Scene-driven parts of the shared fluid world: boundary construction, obstacle motion, emitters, interaction.
 #include <algorithm>
 #include <cmath>
 
-#include "solvers/wcsph.h"
+#include "solvers/fluid_world.h"
 
 namespace rtsph {
 
 template <int D>
-void Wcsph<D>::build_boundary() {
+void FluidWorld<D>::build_boundary() {
   auto samples = sample_walls(spec_);
   const auto obs = sample_obstacles(spec_);
   samples.insert(samples.end(), obs.begin(), obs.end());
@@ -37,7 +37,7 @@ void Wcsph<D>::build_boundary() {
 }
 
 template <int D>
-void Wcsph<D>::move_obstacles(double t_new, double dt) {
+void FluidWorld<D>::move_obstacles(double t_new, double dt) {
   if (obstacles_.empty()) return;
   bool any_moved = false;
   for (std::size_t o = 0; o < obstacles_.size(); ++o) {
@@ -84,7 +84,7 @@ void Wcsph<D>::move_obstacles(double t_new, double dt) {
 }
 
 template <int D>
-void Wcsph<D>::emit_particles(double t_new) {
+void FluidWorld<D>::emit_particles(double t_new) {
   for (std::size_t e = 0; e < spec_.emitters.size(); ++e) {
     const auto& sp = spec_.emitters[e];
     auto& st = emitters_[e];
@@ -121,7 +121,7 @@ void Wcsph<D>::emit_particles(double t_new) {
 }
 
 template <int D>
-void Wcsph<D>::move_obstacle(int index, const Vec3d& center) {
+void FluidWorld<D>::move_obstacle(int index, const Vec3d& center) {
   if (index < 0 || index >= int(obstacles_.size())) return;
   obstacles_[index].user_driven = true;
   obstacles_[index].user_target = center;
@@ -129,21 +129,21 @@ void Wcsph<D>::move_obstacle(int index, const Vec3d& center) {
 }
 
 template <int D>
-Vec3d Wcsph<D>::obstacle_center(int index) const {
+Vec3d FluidWorld<D>::obstacle_center(int index) const {
   if (index < 0 || index >= int(obstacles_.size())) return {};
   return obstacles_[index].pose.center;
 }
 
 template <int D>
-void Wcsph<D>::set_live_parameters(const SimSpec& s) { copy_live_parameters(s, spec_); }
+void FluidWorld<D>::set_live_parameters(const SimSpec& s) { copy_live_parameters(s, spec_); }
 
 #define RTSPH_INSTANTIATE(D)                                   \
-  template void Wcsph<D>::build_boundary();                    \
-  template void Wcsph<D>::move_obstacles(double, double);      \
-  template void Wcsph<D>::emit_particles(double);              \
-  template void Wcsph<D>::move_obstacle(int, const Vec3d&);    \
-  template Vec3d Wcsph<D>::obstacle_center(int) const;         \
-  template void Wcsph<D>::set_live_parameters(const SimSpec&);
+  template void FluidWorld<D>::build_boundary();                    \
+  template void FluidWorld<D>::move_obstacles(double, double);      \
+  template void FluidWorld<D>::emit_particles(double);              \
+  template void FluidWorld<D>::move_obstacle(int, const Vec3d&);    \
+  template Vec3d FluidWorld<D>::obstacle_center(int) const;         \
+  template void FluidWorld<D>::set_live_parameters(const SimSpec&);
 RTSPH_INSTANTIATE(2)
 RTSPH_INSTANTIATE(3)
 #undef RTSPH_INSTANTIATE

@@ -1,0 +1,251 @@
+#include "solvers/fluid_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include "core/timer.h"
+
+namespace rtsph {
+
+template <int D>
+FluidWorld<D>::FluidWorld(const SimSpec& spec, int threads) : spec_(spec), pool_(threads) {
+  if (spec.dimension != D) throw std::invalid_argument("dimension mismatch");
+  resolve_parameters();
+  const auto fluid = sample_fluid(spec_);
+  const auto counts = count_particles(spec_);
+  fluid_.reserve(fluid.size() + std::size_t(counts.emitted_max));
+  for (const auto& p : fluid) {
+    Vec3d v{};
+    for (const auto& b : spec_.fluid_blocks) {
+      bool inside = true;
+      for (int k = 0; k < D; ++k) inside &= p[k] >= b.min[k] && p[k] <= b.max[k];
+      if (inside) { v = b.velocity; break; }
+    }
+    add_fluid_particle(truncate<D>(p), truncate<D>(v));
+  }
+  for (const auto& e : spec_.emitters) emitters_.push_back({e.start_s, 0.0});
+  for (const auto& o : spec_.obstacles) {
+    ObstacleState st;
+    st.pose = obstacle_pose(o, 0.0);
+    st.velocity = o.motion == MotionKind::Velocity ? o.velocity : Vec3d{};
+    st.angular_velocity = o.motion == MotionKind::Velocity ? o.angular_velocity : Vec3d{};
+    obstacles_.push_back(st);
+    boundary_moving_ |= o.motion != MotionKind::Static;
+  }
+  build_boundary();
+  sort_fluid_by_cell();
+}
+
+template <int D>
+void FluidWorld<D>::resolve_parameters() {
+  const SimSpec& s = spec_;
+  prm_.h = s.smoothing_ratio * s.spacing;
+  prm_.support = support_ratio(s.kernel) * prm_.h;
+  prm_.rho0 = s.rest_density;
+  prm_.domain_min = s.domain_min;
+  prm_.domain_max = s.domain_max;
+  // Mass so that a particle inside the initial lattice sits exactly at ρ0: m = ρ0 / Σ_j W(x_ij).
+  const double spacing = s.spacing;
+  const int reach = int(std::ceil(prm_.support / spacing));
+  double lattice_sum = 0;
+  with_kernel<D>(s.kernel, prm_.h, [&](const auto& K) {
+    for (int z = (D == 3 ? -reach : 0); z <= (D == 3 ? reach : 0); ++z)
+      for (int y = -reach; y <= reach; ++y)
+        for (int x = -reach; x <= reach; ++x) {
+          const double r2 = (double(x) * x + double(y) * y + double(z) * z) * spacing * spacing;
+          lattice_sum += double(K.value(float(r2)));
+        }
+  });
+  prm_.mass = prm_.rho0 / lattice_sum;
+  // Speed of sound: ten times the fastest expected flow keeps density errors near 1%
+  // (Monaghan 1994); the fastest flow is a fall through the fluid height, a block's initial
+  // velocity or an emitter's jet.
+  double vmax = 0;
+  const double g = norm(s.gravity);
+  for (const auto& b : s.fluid_blocks) {
+    double height = 0;
+    if (g > 0) {
+      const Vec3d gh = s.gravity / g;
+      for (int k = 0; k < D; ++k) height += std::abs(gh[k]) * (b.max[k] - b.min[k]);
+    }
+    vmax = std::max({vmax, std::sqrt(2 * g * height), norm(b.velocity)});
+  }
+  for (const auto& e : s.emitters) vmax = std::max(vmax, e.speed + std::sqrt(2 * g * (s.domain_max[1] - s.domain_min[1])));
+  for (const auto& o : s.obstacles) vmax = std::max(vmax, norm(o.velocity));
+  if (vmax <= 0) vmax = 1.0;
+  prm_.c0 = s.speed_of_sound > 0 ? s.speed_of_sound : 10.0 * vmax;
+  if (s.eos == Eos::Linear) {
+    // p = k(ρ - ρ0) has dp/dρ = k, so its sound speed is √k.
+    prm_.stiffness = s.stiffness > 0 ? s.stiffness : prm_.c0 * prm_.c0;
+    prm_.c0 = std::sqrt(prm_.stiffness);
+  }
+  prm_.tait_b = prm_.rho0 * prm_.c0 * prm_.c0 / s.tait_gamma;
+}
+
+template <int D>
+void FluidWorld<D>::add_fluid_particle(const Vec<D>& x, const Vec<D>& v) {
+  const std::size_t i = fluid_.size();
+  fluid_.resize(i + 1);
+  fluid_.set_pos(i, x);
+  fluid_.set_vel(i, v);
+  for (int k = 0; k < D; ++k) fluid_.a[k][i] = Real(spec_.gravity[k]);
+  fluid_.rho[i] = Real(prm_.rho0);
+  fluid_.p[i] = 0;
+  fluid_.id[i] = next_id_++;
+  for (auto& f : method_fields_) f.array->resize(i + 1);
+}
+
+template <int D>
+typename FluidWorld<D>::Extremes FluidWorld<D>::max_speed_and_acceleration() const {
+  struct Max {
+    double v2 = 0, a2 = 0;
+    Max& operator+=(const Max& o) { v2 = std::max(v2, o.v2); a2 = std::max(a2, o.a2); return *this; }
+  };
+  const Max m = pool_.parallel_reduce(fluid_.size(), Max{}, [&](std::size_t b, std::size_t e) {
+    Max r;
+    for (std::size_t i = b; i < e; ++i) {
+      double v2 = 0, a2 = 0;
+      for (int k = 0; k < D; ++k) {
+        v2 += double(fluid_.v[k][i]) * fluid_.v[k][i];
+        a2 += double(fluid_.a[k][i]) * fluid_.a[k][i];
+      }
+      r.v2 = std::max(r.v2, v2);
+      r.a2 = std::max(r.a2, a2);
+    }
+    return r;
+  });
+  return {m.v2, m.a2};
+}
+
+template <int D>
+double FluidWorld<D>::viscous_dt_limit() const {
+  // Artificial viscosity acts like ν = α c0 h / (2(D+2)) (Monaghan 2005).
+  const double h = prm_.h;
+  const double nu = std::max(spec_.viscosity,
+                             spec_.artificial_viscosity * prm_.c0 * h / (2.0 * (D + 2)));
+  return nu > 0 ? 0.125 * h * h / nu : 1e30;
+}
+
+template <int D>
+void FluidWorld<D>::kick(double dt) {
+  const Real hdt = Real(dt);
+  pool_.parallel_for(fluid_.size(), [&](std::size_t b, std::size_t e) {
+    for (int k = 0; k < D; ++k) {
+      Real* v = fluid_.v[k].data();
+      const Real* a = fluid_.a[k].data();
+      for (std::size_t i = b; i < e; ++i) v[i] += a[i] * hdt;
+    }
+  });
+}
+
+template <int D>
+void FluidWorld<D>::drift(double dt) {
+  const Real fdt = Real(dt);
+  pool_.parallel_for(fluid_.size(), [&](std::size_t b, std::size_t e) {
+    for (int k = 0; k < D; ++k) {
+      Real* x = fluid_.x[k].data();
+      const Real* v = fluid_.v[k].data();
+      for (std::size_t i = b; i < e; ++i) x[i] += v[i] * fdt;
+    }
+  });
+}
+
+template <int D>
+void FluidWorld<D>::put_back_escaped() {
+  // A particle that crossed a container wall is returned a quarter spacing inside and loses
+  // its outward velocity. NaN positions fail both comparisons and are put back too.
+  const Real margin = Real(0.25 * spec_.spacing);
+  Real lo[D], hi[D];
+  for (int k = 0; k < D; ++k) {
+    lo[k] = Real(prm_.domain_min[k]);
+    hi[k] = Real(prm_.domain_max[k]);
+  }
+  put_back_ += pool_.parallel_reduce(fluid_.size(), std::uint64_t(0), [&](std::size_t b, std::size_t e) {
+    std::uint64_t count = 0;
+    for (std::size_t i = b; i < e; ++i) {
+      bool moved = false;
+      for (int k = 0; k < D; ++k) {
+        Real& x = fluid_.x[k][i];
+        Real& v = fluid_.v[k][i];
+        if (!(x >= lo[k])) { x = lo[k] + margin; v = std::max(v, Real(0)); moved = true; }
+        else if (!(x <= hi[k])) { x = hi[k] - margin; v = std::min(v, Real(0)); moved = true; }
+        if (!std::isfinite(v)) v = 0;
+      }
+      count += moved;
+    }
+    return count;
+  });
+}
+
+template <int D>
+void FluidWorld<D>::update_neighbours() {
+  ScopedTimer timer(times_.neighbours_s);
+  sort_fluid_by_cell();  // counting sort, arrays reordered by cell (Ihmsen et al. 2011)
+  if (boundary_moving_) sort_boundary_by_cell();
+}
+
+template <int D>
+void FluidWorld<D>::sort_fluid_by_cell() {
+  const Real* xs[D];
+  for (int k = 0; k < D; ++k) xs[k] = fluid_.x[k].data();
+  ctx_.fluid_grid.build(xs, fluid_.size(), pool_);
+  const uint32_t* order = ctx_.fluid_grid.order();
+  fluid_.permute_kinematics(order, ctx_.spare, pool_);
+  const std::size_t n = fluid_.size();
+  for (auto& f : method_fields_) {
+    if (!f.sorted) continue;
+    ctx_.tmp.resize(n);
+    const Real* src = f.array->data();
+    Real* dst = ctx_.tmp.data();
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) dst[i] = src[order[i]];
+    });
+    f.array->swap(ctx_.tmp);
+  }
+}
+
+template <int D>
+void FluidWorld<D>::sort_boundary_by_cell() {
+  const Real* xs[D];
+  for (int k = 0; k < D; ++k) xs[k] = boundary_.x[k].data();
+  ctx_.boundary_grid.build(xs, boundary_.size(), pool_);
+  boundary_.permute(ctx_.boundary_grid.order(), ctx_.tmp, pool_);
+}
+
+template <int D>
+void FluidWorld<D>::measure_density_error() {
+  struct Err {
+    double max = 0, sum = 0;
+    Err& operator+=(const Err& o) { max = std::max(max, o.max); sum += o.sum; return *this; }
+  };
+  const double inv_rho0 = 1.0 / prm_.rho0;
+  const Err e = pool_.parallel_reduce(fluid_.size(), Err{}, [&](std::size_t b, std::size_t end) {
+    Err r;
+    for (std::size_t i = b; i < end; ++i) {
+      const double err = std::max(0.0, double(fluid_.rho[i]) * inv_rho0 - 1.0);
+      r.max = std::max(r.max, err);
+      r.sum += err;
+    }
+    return r;
+  });
+  density_error_ = e.max;
+  mean_density_error_ = fluid_.size() ? e.sum / double(fluid_.size()) : 0.0;
+  max_density_error_ = std::max(max_density_error_, density_error_);
+}
+
+template <int D>
+void FluidWorld<D>::compute_inverse_density() {
+  const std::size_t n = fluid_.size();
+  ctx_.inv_rho.resize(n);
+  const Real* rho = fluid_.rho.data();
+  Real* out = ctx_.inv_rho.data();
+  pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) out[i] = Real(1) / rho[i];
+  });
+}
+
+template class FluidWorld<2>;
+template class FluidWorld<3>;
+
+}  // namespace rtsph

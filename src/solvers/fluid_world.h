@@ -1,0 +1,159 @@
+#pragma once
+// The fluid world every SPH method shares (CPU, templated on the dimension): particles and their
+// storage, boundary samples and their volumes (Akinci et al. 2012), obstacles and their motion,
+// emitters, put-back, neighbour grids and sorting, the brush, gravity, the non-pressure forces,
+// statistics, checkpoint fields and live parameters. A method (wcsph.h, pbf.h, dfsph.h) derives
+// from FluidWorld, owns only its own per-particle fields and writes its step() from the stages
+// here; it copies none of them.
+#include <string>
+#include <vector>
+
+#include "core/grid.h"
+#include "core/particles.h"
+#include "solvers/geometry.h"
+#include "solvers/simulation.h"
+
+namespace rtsph {
+
+/// Constants derived once from the spec (SI units).
+struct ResolvedParams {
+  double h = 0, support = 0;   // m: smoothing length and kernel support radius
+  double mass = 0;             // kg per fluid particle
+  double rho0 = 0, c0 = 0;     // kg/m³, m/s (c0: WCSPH's sound speed; also scales Monaghan's Π)
+  double tait_b = 0;           // Pa, B = ρ0 c0² / γ
+  double stiffness = 0;        // m²/s², linear EOS p = k (ρ - ρ0)
+  Vec3d domain_min{}, domain_max{};
+};
+
+/// Scratch rebuilt every step; nothing here needs saving in a checkpoint.
+template <int D>
+struct StepContext {
+  UniformGrid<D> fluid_grid, boundary_grid;
+  AlignedArray<Real> p_over_rho2;  // pᵢ/ρᵢ² (or a method's equivalent), symmetric pressure term
+  AlignedArray<Real> inv_rho;      // 1/ρᵢ, Morris viscosity
+  AlignedArray<Real> boundary_p_over_rho2;  // p_b/ρ0² extrapolated from the fluid (Adami 2012)
+  AlignedArray<Real> tmp;          // permutation scratch (boundary and method fields)
+  typename FluidParticles<D>::Spare spare;  // double buffers for the fluid reorder
+  std::size_t bytes() const {
+    return fluid_grid.bytes() + boundary_grid.bytes() + p_over_rho2.bytes() + inv_rho.bytes() +
+           boundary_p_over_rho2.bytes() + tmp.bytes() + spare.bytes();
+  }
+};
+
+/// Runtime state of a rigid obstacle.
+struct ObstacleState {
+  Pose pose;
+  Vec3d velocity{}, angular_velocity{};  // m/s, rad/s
+  bool user_driven = false;              // the viewer moved it: prescribed motion is off
+  Vec3d user_target{};
+};
+
+struct EmitterState {
+  double next_layer_s = 0;     // simulated time of the next emitted layer
+  double emitted = 0;          // particles emitted so far
+};
+
+/// Which terms the shared acceleration sum adds (see accelerations()).
+struct ForceTerms {
+  const Real* pressure = nullptr;           // Pᵢ per fluid particle (p/ρ², or κ/ρ): symmetric
+  const Real* boundary_pressure = nullptr;  //   pressure term; P_b per boundary sample (null: 0)
+  bool viscosity = true;   // Morris laminar + Monaghan artificial viscosity, fluid and walls
+  bool external = true;    // gravity and the brush
+};
+
+template <int D>
+class FluidWorld : public Simulation {
+ public:
+  int dimension() const override { return D; }
+  const SimSpec& spec() const override { return spec_; }
+  double time() const override { return time_; }
+  std::uint64_t step_count() const override { return steps_; }
+  SimStats stats() const override;
+  const StageTimes& stage_times() const override { return times_; }
+  void reset_stage_times() override { times_ = {}; }
+  ParticleView fluid() const override;
+  BoundaryView boundary() const override;
+  void set_gravity(const Vec3d& g) override { spec_.gravity = g; }
+  void set_brush(const Brush& b) override { brush_ = b; }
+  void move_obstacle(int index, const Vec3d& center) override;
+  Vec3d obstacle_center(int index) const override;
+  Pose obstacle_transform(int index) const override;
+  void set_live_parameters(const SimSpec& s) override;
+  void prepare_state(std::size_t fluid_count) override;
+  std::vector<StateField> state_fields() override;
+  void state_loaded() override;
+
+ protected:
+  /// Samples the fluid, walls and obstacles; the method then computes its initial fields.
+  FluidWorld(const SimSpec& spec, int threads);
+
+  /// A per-particle array a method owns. It is resized with the fluid, permuted when the fluid
+  /// is sorted (when `sorted`), and saved in checkpoints (when `saved`).
+  struct MethodField {
+    std::string name;
+    AlignedArray<Real>* array;
+    bool sorted = true, saved = true;
+  };
+  void add_method_field(const MethodField& f) {
+    f.array->resize(fluid_.size());
+    method_fields_.push_back(f);
+  }
+  /// Method scalars that a checkpoint must carry (iteration counts, warm-start state).
+  virtual void add_method_scalars(std::vector<StateField>&) {}
+  /// Method figures for the statistics (iterations, residual errors).
+  virtual void add_method_stats(SimStats&) const {}
+
+  // Shared stages, in the order a step usually calls them.
+  struct Extremes { double v2 = 0, a2 = 0; };
+  Extremes max_speed_and_acceleration() const;  // max |v|², |a|² over the fluid
+  void kick(double dt);                  // v += a dt
+  void drift(double dt);                 // x += v dt
+  void move_obstacles(double t_new, double dt);  // prescribed or user-driven rigid motion
+  void emit_particles(double t_new);     // nozzle layers due by t_new
+  void put_back_escaped();               // the safety net: nothing is ever lost
+  void advance_scene(double t_new, double dt) {  // the three above, timed as integration
+    move_obstacles(t_new, dt);
+    emit_particles(t_new);
+    put_back_escaped();
+  }
+  void update_neighbours();              // sort fluid (and moving boundary) by cell
+  void compute_density();                // ρᵢ = Σⱼ mⱼ Wᵢⱼ + Σ_b Ψ_b W_ib (Akinci 2012, eq. 6)
+  void measure_density_error();          // max and mean compression (ρ-ρ0)/ρ0 ≥ 0
+  void compute_inverse_density();        // ctx_.inv_rho for the viscosity terms
+  void extrapolate_boundary_pressure();  // p_b from fluid_.p (Adami et al. 2012, eq. 27)
+  /// aᵢ (fluid_.a) = pressure + viscosity + gravity + brush, as `terms` selects; one pair loop.
+  void accelerations(const ForceTerms& terms);
+  /// Viscous time-step limit 0.125 h²/ν, with Monaghan's α counted as ν = α c0 h / (2(D+2)).
+  double viscous_dt_limit() const;
+
+  SimSpec spec_;
+  ThreadPool pool_;
+  ResolvedParams prm_;
+  FluidParticles<D> fluid_;
+  BoundaryParticles<D> boundary_;
+  std::vector<ObstacleState> obstacles_;
+  std::vector<EmitterState> emitters_;
+  StepContext<D> ctx_;
+  Brush brush_;
+  StageTimes times_;
+
+  double time_ = 0, dt_ = 0;
+  std::uint64_t steps_ = 0, put_back_ = 0;
+  std::uint32_t next_id_ = 0;
+  double density_error_ = 0, max_density_error_ = 0, mean_density_error_ = 0;
+  bool boundary_moving_ = false;
+
+ private:
+  void resolve_parameters();
+  void build_boundary();
+  void compute_boundary_psi();
+  void sort_fluid_by_cell();
+  void sort_boundary_by_cell();
+  void add_fluid_particle(const Vec<D>& x, const Vec<D>& v);
+  template <bool kPressure, bool kViscosity, bool kExternal>
+  void accelerations_impl(const ForceTerms& terms);
+
+  std::vector<MethodField> method_fields_;
+};
+
+}  // namespace rtsph

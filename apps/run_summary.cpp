@@ -15,6 +15,7 @@ RunSummary make_summary(const Simulation& sim, long long steps, double wall_s, i
   const SimStats st = sim.stats();
   RunSummary s;
   s.scene = sim.spec().name;
+  s.method = st.method;
   s.dimension = sim.dimension();
   s.fluid_particles = st.fluid_particles;
   s.boundary_particles = st.boundary_particles;
@@ -23,6 +24,9 @@ RunSummary make_summary(const Simulation& sim, long long steps, double wall_s, i
   s.wall_s = wall_s;
   s.fluid_particle_steps_per_s = wall_s > 0 ? double(st.fluid_particles) * double(steps) / wall_s : 0;
   s.max_density_error = st.max_density_error;
+  s.mean_density_error = st.mean_density_error;
+  s.mean_pressure_iterations = st.mean_pressure_iterations;
+  s.mean_divergence_iterations = st.mean_divergence_iterations;
   s.particles_put_back = st.particles_put_back;
   s.threads = threads > 0 ? threads : omp_get_max_threads();
   s.bytes = st.bytes;
@@ -31,7 +35,7 @@ RunSummary make_summary(const Simulation& sim, long long steps, double wall_s, i
 
 void print_summary(const RunSummary& s, std::FILE* out) {
   fmt::print(out,
-             "scene                  {} ({}D)\n"
+             "scene                  {} ({}D, {})\n"
              "fluid particles        {}\n"
              "boundary particles     {}\n"
              "steps                  {}\n"
@@ -39,10 +43,14 @@ void print_summary(const RunSummary& s, std::FILE* out) {
              "simulated time         {:.4f} s\n"
              "throughput             {:.3g} fluid particle-steps/s ({} threads)\n"
              "max density error      {:.2f} %\n"
+             "mean density error     {:.3f} % (last step)\n"
              "put back into domain   {}\n",
-             s.scene, s.dimension, s.fluid_particles, s.boundary_particles, s.steps, s.wall_s,
+             s.scene, s.dimension, s.method, s.fluid_particles, s.boundary_particles, s.steps, s.wall_s,
              s.sim_time_s, s.fluid_particle_steps_per_s, s.threads, 100 * s.max_density_error,
-             s.particles_put_back);
+             100 * s.mean_density_error, s.particles_put_back);
+  if (s.mean_pressure_iterations > 0 || s.mean_divergence_iterations > 0)
+    fmt::print(out, "solver iterations      {:.2f} pressure, {:.2f} divergence (mean per step)\n",
+               s.mean_pressure_iterations, s.mean_divergence_iterations);
   if (s.status != "completed") fmt::print(out, "status                 {}\n", s.status);
   if (s.retries > 0) fmt::print(out, "retries (dt halved)    {}\n", s.retries);
   if (!s.checkpoint.empty()) fmt::print(out, "checkpoint             {}\n", s.checkpoint);
@@ -52,6 +60,7 @@ void print_summary(const RunSummary& s, std::FILE* out) {
 std::string summary_json(const RunSummary& s) {
   nlohmann::ordered_json j;
   j["scene"] = s.scene;
+  j["method"] = s.method;
   j["dimension"] = s.dimension;
   j["fluid_particles"] = s.fluid_particles;
   j["boundary_particles"] = s.boundary_particles;
@@ -60,6 +69,9 @@ std::string summary_json(const RunSummary& s) {
   j["wall_s"] = s.wall_s;
   j["fluid_particle_steps_per_s"] = s.fluid_particle_steps_per_s;
   j["max_density_error"] = s.max_density_error;
+  j["mean_density_error"] = s.mean_density_error;
+  j["mean_pressure_iterations"] = s.mean_pressure_iterations;
+  j["mean_divergence_iterations"] = s.mean_divergence_iterations;
   j["particles_put_back"] = s.particles_put_back;
   j["threads"] = s.threads;
   j["bytes"] = s.bytes;

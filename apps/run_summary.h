@@ -10,11 +10,14 @@ namespace rtsph::app {
 
 struct RunSummary {
   std::string scene;
+  std::string method;
   int dimension = 3;
   std::size_t fluid_particles = 0, boundary_particles = 0;
   long long steps = 0;
   double sim_time_s = 0, wall_s = 0, fluid_particle_steps_per_s = 0;
   double max_density_error = 0;
+  double mean_density_error = 0;  // last step
+  double mean_pressure_iterations = 0, mean_divergence_iterations = 0;  // per step, over the run
   unsigned long long particles_put_back = 0;
   int threads = 0;
   std::size_t bytes = 0;

@@ -90,7 +90,10 @@ const std::vector<ParamInfo>& parameter_table() {
                                   .live = true}),
       field<&SimSpec::method>({.key = "solver.method", .default_text = "wcsph",
                                .choices = solver_methods(),
-                               .help = "Solver method; wcsph is weakly compressible SPH."}),
+                               .help = "Solver method: wcsph (weakly compressible, small explicit steps), "
+                                       "pbf (position based fluids: large fixed steps, for "
+                                       "real time) or dfsph (divergence-free SPH: implicit, "
+                                       "large steps, accurate)."}),
       field<&SimSpec::eos>({.key = "solver.eos", .default_text = "tait", .choices = {"tait", "linear"},
                             .help = "Equation of state: Tait p = B((ρ/ρ0)^γ - 1) or linear "
                                     "p = k(ρ - ρ0)."}),
@@ -121,8 +124,9 @@ const std::vector<ParamInfo>& parameter_table() {
                                                 .live = true}),
       field<&SimSpec::time_step_mode>({.key = "solver.time_step.mode", .default_text = "cfl",
                                        .choices = {"cfl", "fixed"},
-                                       .help = "cfl: adaptive dt = cfl·h/(c0 + |v|max), at most "
-                                               "max_dt; fixed: always dt.",
+                                       .help = "cfl: adaptive dt = cfl·h/(c0 + |v|max) (WCSPH) "
+                                               "or cfl·spacing/|v|max (DFSPH), at most max_dt; "
+                                               "fixed: always dt. PBF has its own step.",
                                        .live = true}),
       field<&SimSpec::cfl>({.key = "solver.time_step.cfl", .min = 0, .max = 1, .min_exclusive = true,
                             .default_value = 0.4, .help = "CFL number (cfl mode).", .live = true}),
@@ -136,6 +140,65 @@ const std::vector<ParamInfo>& parameter_table() {
                                         .default_value = 1,
                                         .help = "Layers of wall particles (Akinci 2012: one "
                                                 "suffices; more for thin fast jets)."}),
+      field<&SimSpec::pbf_time_step>({.key = "solver.pbf.time_step", .unit = "s", .min = 1e-5,
+                                      .max = 0.1, .default_value = 1.0 / 60,
+                                      .help = "PBF frame step, split into solver.pbf.substeps.",
+                                      .live = true}),
+      field<&SimSpec::pbf_substeps>({.key = "solver.pbf.substeps", .min = 1, .max = 100,
+                                     .default_value = 2,
+                                     .help = "PBF substeps per frame step.", .live = true}),
+      field<&SimSpec::pbf_iterations>({.key = "solver.pbf.iterations", .min = 1, .max = 100,
+                                       .default_value = 4,
+                                       .help = "Jacobi iterations of the density constraint per "
+                                               "substep.",
+                                       .live = true}),
+      field<&SimSpec::pbf_cfl>({.key = "solver.pbf.cfl", .min = 0, .max = 10, .default_value = 1,
+                                .help = "PBF substeps shrink so no particle moves more than "
+                                        "cfl·spacing in one; 0 = never.",
+                                .live = true}),
+      field<&SimSpec::pbf_relaxation>({.key = "solver.pbf.relaxation", .min = 0, .max = 10,
+                                       .default_value = 0.01,
+                                       .help = "Constraint relaxation ε in λ = -C/(Σ|∇C|² + ε), "
+                                               "relative to a full neighbourhood's Σ|∇C|².",
+                                       .live = true}),
+      field<&SimSpec::pbf_scorr_k>({.key = "solver.pbf.scorr_k", .min = 0, .max = 10,
+                                    .default_value = 0.1,
+                                    .help = "Artificial pressure s_corr = -k(W(r)/W(Δq))^n "
+                                            "against tensile clumping (in units of a unit "
+                                            "constraint's λ); 0 = off.",
+                                    .live = true}),
+      field<&SimSpec::pbf_scorr_n>({.key = "solver.pbf.scorr_n", .min = 1, .max = 8,
+                                    .default_value = 4, .help = "Exponent n of s_corr.",
+                                    .live = true}),
+      field<&SimSpec::pbf_scorr_dq>({.key = "solver.pbf.scorr_dq", .min = 0, .max = 0.99,
+                                     .default_value = 0.2,
+                                     .help = "Δq of s_corr as a fraction of the kernel support.",
+                                     .live = true}),
+      field<&SimSpec::pbf_xsph>({.key = "solver.pbf.xsph", .min = 0, .max = 1,
+                                 .default_value = 0.01,
+                                 .help = "XSPH viscosity c (PBF's viscosity; fluid.viscosity and "
+                                         "solver.artificial_viscosity do not apply to PBF).",
+                                 .live = true}),
+      field<&SimSpec::pbf_vorticity>({.key = "solver.pbf.vorticity", .unit = "m/s", .min = 0,
+                                      .max = 10, .default_value = 0,
+                                      .help = "Vorticity confinement ε: restores the swirl that "
+                                              "PBF damps (0.01–0.05 for lively splashes); 0 = off.",
+                                      .live = true}),
+      field<&SimSpec::dfsph_max_density_error>({.key = "solver.dfsph.max_density_error",
+                                                .min = 1e-6, .max = 0.1, .default_value = 1e-3,
+                                                .help = "DFSPH constant-density solve stops at "
+                                                        "this mean (ρ-ρ0)/ρ0 (0.001 = 0.1%).",
+                                                .live = true}),
+      field<&SimSpec::dfsph_max_divergence_error>({.key = "solver.dfsph.max_divergence_error",
+                                                   .min = 1e-6, .max = 0.1, .default_value = 1e-3,
+                                                   .help = "DFSPH divergence-free solve stops at "
+                                                           "this mean (Dρ/Dt)·dt/ρ0.",
+                                                   .live = true}),
+      field<&SimSpec::dfsph_max_iterations>({.key = "solver.dfsph.max_iterations", .min = 1,
+                                             .max = 10000, .default_value = 100,
+                                             .help = "Iteration cap of each DFSPH solve; hitting "
+                                                     "it stops the run (instability guard).",
+                                             .live = true}),
       field<&SimSpec::gravity>({.key = "gravity", .unit = "m/s²", .min = -1000, .max = 1000,
                                 .default_vec = {0, -9.81, 0},
                                 .help = "Gravitational acceleration; y is up.", .live = true}),

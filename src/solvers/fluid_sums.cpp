@@ -82,6 +82,7 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
   }
   const Real* psi = boundary_.psi.data();
   const Real* Pb = terms.boundary_pressure;
+  const bool mirror = terms.mirror_boundary;
   const Real* rho = fluid_.rho.data();
   const Real* P = terms.pressure;
   const Real* inv_rho = ctx_.inv_rho.data();
@@ -97,6 +98,7 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
         Real xi[D], vi[D];
         for (int k = 0; k < D; ++k) { xi[k] = fx[k][i]; vi[k] = fv[k][i]; }
         const Real rhoi = rho[i], Pi = kPressure ? P[i] : Real(0), iri = kViscosity ? inv_rho[i] : Real(0);
+        const Real Pbm = mirror ? Pi : Real(0);
         f8 acc[D] = {};
         if constexpr (kPressure || kViscosity) {
         for_each_candidate_batch<D>(
@@ -129,7 +131,7 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
               }
               const f8 w = simd::load(psi + j);
               f8 pib = f8{}, lam = f8{};
-              if constexpr (kPressure) pib = Pi + (Pb ? simd::load(Pb + j) : f8{});
+              if constexpr (kPressure) pib = Pi + (Pb ? simd::load(Pb + j) : f8{} + Pbm);
               if constexpr (kViscosity) {
                 const f8 inv = simd::rcp(r2 + eps);
                 pib += simd::select(vr < 0.0f, -ach * vr * inv * iri, f8{});

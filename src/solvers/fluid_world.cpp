@@ -119,6 +119,23 @@ typename FluidWorld<D>::Extremes FluidWorld<D>::max_speed_and_acceleration() con
 }
 
 template <int D>
+double FluidWorld<D>::lattice_gradient_sum() const {
+  const double s = spec_.spacing;
+  const int reach = int(std::ceil(prm_.support / s));
+  double sum = 0;
+  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+    for (int z = (D == 3 ? -reach : 0); z <= (D == 3 ? reach : 0); ++z)
+      for (int y = -reach; y <= reach; ++y)
+        for (int x = -reach; x <= reach; ++x) {
+          const double r2 = (double(x) * x + double(y) * y + double(z) * z) * s * s;
+          const double G = K.grad_factor(float(r2));
+          sum += G * G * r2;
+        }
+  });
+  return sum * prm_.mass * prm_.mass;
+}
+
+template <int D>
 double FluidWorld<D>::viscous_dt_limit() const {
   // Artificial viscosity acts like ν = α c0 h / (2(D+2)) (Monaghan 2005).
   const double h = prm_.h;

@@ -56,7 +56,8 @@ struct EmitterState {
 /// Which terms the shared acceleration sum adds (see accelerations()).
 struct ForceTerms {
   const Real* pressure = nullptr;           // Pᵢ per fluid particle (p/ρ², or κ/ρ): symmetric
-  const Real* boundary_pressure = nullptr;  //   pressure term; P_b per boundary sample (null: 0)
+  const Real* boundary_pressure = nullptr;  //   pressure term; P_b per boundary sample, or
+  bool mirror_boundary = false;             //   P_b = Pᵢ (true), or 0 (null, false)
   bool viscosity = true;   // Morris laminar + Monaghan artificial viscosity, fluid and walls
   bool external = true;    // gravity and the brush
 };
@@ -123,6 +124,9 @@ class FluidWorld : public Simulation {
   void extrapolate_boundary_pressure();  // p_b from fluid_.p (Adami et al. 2012, eq. 27)
   /// aᵢ (fluid_.a) = pressure + viscosity + gravity + brush, as `terms` selects; one pair loop.
   void accelerations(const ForceTerms& terms);
+  /// Σⱼ |m∇Wᵢⱼ|² for a particle inside the rest lattice (kg²/m^(2d+2)): the scale of the
+  /// implicit methods' diagonals (PBF's Σ|∇C|², DFSPH's 1/α), for relative tolerances.
+  double lattice_gradient_sum() const;
   /// Viscous time-step limit 0.125 h²/ν, with Monaghan's α counted as ν = α c0 h / (2(D+2)).
   double viscous_dt_limit() const;
 

@@ -111,13 +111,18 @@ std::optional<std::string> check_health_message(const Simulation& sim, double ma
 }
 
 std::string likely_instability_cause(const Simulation& sim, const HealthIssue& issue) {
+  // An iterative method that gave up names its own failure first.
+  const std::string failure = sim.solver_failure();
+  if (!failure.empty()) return failure;
   const SimSpec& s = sim.spec();
   const SimStats st = sim.stats();
   const double h = st.h, c0 = st.c0, dt = issue.dt_s > 0 ? issue.dt_s : st.dt_s;
   const int D = sim.dimension();
   // The solver's own limits (Monaghan 1992), evaluated with the fluid at rest: acoustic
   // 0.4·h/c0, body force 0.25·sqrt(h/|g|), viscous 0.125·h²/ν.
-  const double acoustic = c0 > 0 ? 0.4 * h / c0 : 0;
+  // Only WCSPH is bound by the speed of sound; PBF and DFSPH solve for the pressure.
+  const bool wcsph = s.method == "wcsph";
+  const double acoustic = wcsph && c0 > 0 ? 0.4 * h / c0 : 0;
   const double g = norm(s.gravity);
   const double force = g > 0 ? 0.25 * std::sqrt(h / g) : 0;
   const double nu = std::max(s.viscosity, s.artificial_viscosity * c0 * h / (2.0 * (D + 2)));
@@ -136,6 +141,13 @@ std::string likely_instability_cause(const Simulation& sim, const HealthIssue& i
   if (viscous > 0 && dt > viscous * 1.0001) {
     return "dt " + num(dt) + " s is above the viscous limit " + num(viscous) + " s for ν = " + num(nu) +
            " m²/s (" + fix + ")";
+  }
+  if (!wcsph) {
+    const bool pbf = s.method == "pbf";
+    return std::string("the ") + (pbf ? "PBF" : "DFSPH") + " pressure solve cannot keep up with the flow " +
+           "(fastest particle " + num(st.max_speed) + " m/s, dt " + num(dt) + " s): " +
+           (pbf ? "raise solver.pbf.iterations or solver.pbf.substeps"
+                : "raise solver.dfsph.max_iterations or lower solver.time_step.cfl");
   }
   if (issue.kind == HealthIssue::Kind::Compression || st.max_speed > 0.3 * c0) {
     return "the speed of sound c0 = " + num(c0) + " m/s is too low for the flow (fastest particle " +

@@ -1,10 +1,12 @@
-// Solvers registered by name. A constant table: adding DFSPH or PBF is one row.
+// Solvers registered by name. A constant table: adding a method is one row.
 #include <algorithm>
 #include <array>
 #include <cmath>
 #include <stdexcept>
 
 #include "solvers/geometry.h"
+#include "solvers/dfsph.h"
+#include "solvers/pbf.h"
 #include "solvers/wcsph.h"
 
 namespace rtsph {
@@ -19,8 +21,10 @@ template <template <int> class S, int D>
 std::unique_ptr<Simulation> make(const SimSpec& s, int threads) {
   return std::make_unique<S<D>>(s, threads);
 }
-constexpr std::array<SolverEntry, 1> kSolvers{{
+constexpr std::array<SolverEntry, 3> kSolvers{{
     {"wcsph", &make<Wcsph, 2>, &make<Wcsph, 3>},
+    {"pbf", &make<Pbf, 2>, &make<Pbf, 3>},
+    {"dfsph", &make<Dfsph, 2>, &make<Dfsph, 3>},
 }};
 }  // namespace
 
@@ -32,10 +36,12 @@ std::vector<std::string> solver_methods() {
 
 // Bytes per particle of the WCSPH storage: fluid x,v,a (3D), ρ, p, id; scratch p/ρ², 1/ρ,
 // permutation temp; grid keys, sorted keys and order. Boundary: x, v, local, Ψ, owner, grid.
+// PBF and DFSPH add up to 2D + 3 floats per particle of their own.
 std::size_t estimate_memory_bytes(const SimSpec& s) {
   const auto c = count_particles(s);
   const double D = s.dimension;
-  const double fluid_bytes = 4.0 * (3 * D + 3) + 4.0 * 3 + 4.0 * 3;
+  const double method_bytes = s.method == "wcsph" ? 0.0 : 4.0 * (2 * D + 3);
+  const double fluid_bytes = 4.0 * (3 * D + 3) + 4.0 * 3 + 4.0 * 3 + method_bytes;
   const double boundary_bytes = 4.0 * (3 * D + 2) + 4.0 * 4;
   const double total = (c.fluid + c.emitted_max) * fluid_bytes + c.boundary * boundary_bytes +
                        c.grid_cells * 4.0 * 2;

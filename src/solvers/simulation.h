@@ -85,9 +85,10 @@ class Simulation {
     p.center = obstacle_center(index);
     return p;
   }
-  /// Non-empty when the method's own solver failed in the last step, e.g. "DFSPH density solve
-  /// did not converge in 100 iterations (mean density error 0.8%)". The instability guard
-  /// reports it.
+  /// Non-empty when the method's own solver gave up in the last step, e.g. "DFSPH density
+  /// solve did not converge in 100 iterations at t = 0.1 s (...)". Not fatal by itself (a
+  /// sudden load can need more sweeps than allowed); the instability guard names it as the
+  /// cause when the state then fails its checks.
   virtual std::string solver_failure() const { return {}; }
   /// Applies parameters that are safe to change while running (viscosity, α, CFL, gravity…).
   virtual void set_live_parameters(const SimSpec& s) = 0;

@@ -74,6 +74,23 @@ struct SimSpec {
   double max_dt = 5e-3;            // s, upper bound in CFL mode
   int boundary_layers = 1;         // Akinci: one layer suffices; more for thin fast jets
 
+  // PBF, position based fluids (Macklin & Müller 2013)
+  double pbf_time_step = 1.0 / 60; // s, frame step, split into pbf_substeps
+  int pbf_substeps = 2;
+  int pbf_iterations = 4;          // Jacobi iterations of the density constraint per substep
+  double pbf_cfl = 1.0;            // substeps shrink so no particle moves more than cfl·spacing
+  double pbf_relaxation = 0.01;    // ε, relative to a full neighbourhood's Σ|∇C|²
+  double pbf_scorr_k = 0.1;        // artificial pressure s_corr = -k (W(r)/W(Δq))^n
+  int pbf_scorr_n = 4;
+  double pbf_scorr_dq = 0.2;       // Δq as a fraction of the kernel support
+  double pbf_xsph = 0.01;          // XSPH viscosity c
+  double pbf_vorticity = 0;        // m/s, vorticity confinement ε (0 = off)
+
+  // DFSPH, divergence-free SPH (Bender & Koschier 2015, 2017)
+  double dfsph_max_density_error = 1e-3;     // mean (ρ-ρ0)/ρ0 at which the density solve stops
+  double dfsph_max_divergence_error = 1e-3;  // mean (Dρ/Dt)·dt/ρ0 at which the divergence solve stops
+  int dfsph_max_iterations = 100;
+
   Vec3d gravity{0, -9.81, 0};      // m/s²
   std::vector<FluidBlock> fluid_blocks;
   std::vector<ObstacleSpec> obstacles;
@@ -94,6 +111,19 @@ inline void copy_live_parameters(const SimSpec& from, SimSpec& to) {
   to.dt = from.dt;
   to.max_dt = from.max_dt;
   to.gravity = from.gravity;
+  to.pbf_time_step = from.pbf_time_step;
+  to.pbf_substeps = from.pbf_substeps;
+  to.pbf_iterations = from.pbf_iterations;
+  to.pbf_cfl = from.pbf_cfl;
+  to.pbf_relaxation = from.pbf_relaxation;
+  to.pbf_scorr_k = from.pbf_scorr_k;
+  to.pbf_scorr_n = from.pbf_scorr_n;
+  to.pbf_scorr_dq = from.pbf_scorr_dq;
+  to.pbf_xsph = from.pbf_xsph;
+  to.pbf_vorticity = from.pbf_vorticity;
+  to.dfsph_max_density_error = from.dfsph_max_density_error;
+  to.dfsph_max_divergence_error = from.dfsph_max_divergence_error;
+  to.dfsph_max_iterations = from.dfsph_max_iterations;
 }
 
 }  // namespace rtsph

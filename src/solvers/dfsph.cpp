@@ -1,0 +1,95 @@
+// DFSPH step (Bender & Koschier 2017, Algorithm 1). Non-pressure forces are the shared ones
+// (Morris and Monaghan viscosity, gravity, brush); the pressure solves are in dfsph_solve.cpp.
+#include "solvers/dfsph.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/timer.h"
+
+namespace rtsph {
+
+template <int D>
+Dfsph<D>::Dfsph(const SimSpec& spec, int threads) : W(spec, threads) {
+  // Derived after each neighbour update (saved, so a resumed step needs no recompute).
+  this->add_method_field({"factor", &factor_, false, true});
+  this->add_method_field({"neighbours", &neighbours_, false, true});
+  // Scratch of one solve.
+  this->add_method_field({"pressure", &pressure_, false, false});
+  // Warm start: the pressure of the last step travels with its particle.
+  this->add_method_field({"warm_density", &warm_density_, true, true});
+  this->add_method_field({"warm_divergence", &warm_divergence_, true, true});
+  this->compute_density();
+  this->measure_density_error();
+  compute_factors();
+  this->reset_stage_times();
+}
+
+template <int D>
+void Dfsph<D>::step() {
+  failure_.clear();
+  {
+    ScopedTimer timer(times_.forces_s);
+    this->compute_inverse_density();
+    this->accelerations({.viscosity = true, .external = true});  // a_nonp            (line 4)
+  }
+  const double dt = choose_time_step();                           // CFL              (line 5)
+  {
+    ScopedTimer timer(times_.integrate_s);
+    this->kick(dt);                                               // v* = v + Δt a    (line 6)
+  }
+  correct_density_error(dt);                                      // Algorithm 3      (line 7)
+  {
+    ScopedTimer timer(times_.integrate_s);
+    this->drift(dt);                                              // x += Δt v*       (line 8)
+    this->advance_scene(this->time_ + dt, dt);                    // obstacles, emitters
+  }
+  this->update_neighbours();                                      //                  (line 9)
+  {
+    ScopedTimer timer(times_.density_s);
+    this->compute_density();                                      //                  (line 10)
+    this->measure_density_error();
+    compute_factors();                                            // αᵢ               (line 11)
+  }
+  correct_divergence_error(dt);                                   // Algorithm 2      (line 12)
+  this->time_ += dt;
+  this->dt_ = dt;
+  ++this->steps_;
+  density_iteration_sum_ += density_iterations_;
+  divergence_iteration_sum_ += divergence_iterations_;
+}
+
+// Δt = cfl·d/|v|max (2017, eq. 13, d the particle spacing), also bounded by the force and
+// viscous limits and max_dt; or the fixed step.
+template <int D>
+double Dfsph<D>::choose_time_step() const {
+  if (spec_.time_step_mode == TimeStepMode::Fixed) return spec_.dt;
+  const auto m = this->max_speed_and_acceleration();
+  double dt = spec_.max_dt;
+  if (m.v2 > 0) dt = std::min(dt, spec_.cfl * spec_.spacing / std::sqrt(m.v2));
+  if (m.a2 > 0) dt = std::min(dt, 0.25 * std::sqrt(prm_.h / std::sqrt(m.a2)));
+  return std::min(dt, this->viscous_dt_limit());
+}
+
+template <int D>
+void Dfsph<D>::add_method_scalars(std::vector<StateField>& f) {
+  f.push_back({"dfsph.density_iterations", &density_iterations_, sizeof density_iterations_});
+  f.push_back({"dfsph.divergence_iterations", &divergence_iterations_, sizeof divergence_iterations_});
+  f.push_back({"dfsph.density_iteration_sum", &density_iteration_sum_, sizeof density_iteration_sum_});
+  f.push_back({"dfsph.divergence_iteration_sum", &divergence_iteration_sum_,
+               sizeof divergence_iteration_sum_});
+}
+
+template <int D>
+void Dfsph<D>::add_method_stats(SimStats& s) const {
+  s.pressure_iterations = density_iterations_;
+  s.divergence_iterations = divergence_iterations_;
+  const double steps = double(std::max<std::uint64_t>(1, this->steps_));
+  s.mean_pressure_iterations = density_iteration_sum_ / steps;
+  s.mean_divergence_iterations = divergence_iteration_sum_ / steps;
+}
+
+template class Dfsph<2>;
+template class Dfsph<3>;
+
+}  // namespace rtsph

@@ -1,0 +1,46 @@
+#pragma once
+// Divergence-Free SPH (Bender & Koschier 2015, 2017): two implicit pressure solves per step,
+// one that keeps the density at ρ0 and one that keeps the velocity field divergence-free, so
+// the step is limited by the flow speed (CFL) instead of the speed of sound.
+#include <string>
+
+#include "solvers/fluid_world.h"
+
+namespace rtsph {
+
+template <int D>
+class Dfsph final : public FluidWorld<D> {
+ public:
+  Dfsph(const SimSpec& spec, int threads);
+  void step() override;
+  std::string solver_failure() const override { return failure_; }
+
+ private:
+  using W = FluidWorld<D>;
+  using W::spec_, W::pool_, W::prm_, W::fluid_, W::boundary_, W::ctx_, W::times_;
+
+  double choose_time_step() const;
+  void compute_factors();                  // αᵢ and neighbour counts (2017, eq. 8)
+  double correct_density_error(double dt);       // Algorithm 3
+  double correct_divergence_error(double dt);    // Algorithm 2
+  /// Warm start from `total` (last step's pressure), then projected Jacobi sweeps until the
+  /// mean residual reaches the tolerance; leaves this step's total pressure in `total`.
+  template <bool kDensity>
+  int solve(double dt, AlignedArray<Real>& total, double tolerance, const char* name);
+  /// Dρᵢ/Dt = Σⱼ m vᵢⱼ·∇Wᵢⱼ + Σ_b Ψ_b (vᵢ − v_b)·∇W_ib (eq. 9) with the current velocities,
+  /// turned into this sweep's Pᵢ (pressure_); returns the mean relative residual.
+  double residual(bool density, double dt, const AlignedArray<Real>& total);
+  void apply_pressure(const Real* P, double dt);
+  void add_method_scalars(std::vector<StateField>& f) override;
+  void add_method_stats(SimStats& s) const override;
+
+  AlignedArray<Real> factor_;        // 1/(|Σm∇W + Σ_bΨ∇W|-weighted sums), m^(2d+2)/kg² (eq. 8)
+  AlignedArray<Real> neighbours_;    // fluid + boundary neighbours, for the divergence clamp
+  AlignedArray<Real> pressure_;      // Pᵢ = κᵢ/ρᵢ of the current sweep (m^(d+2)/(kg s²))
+  AlignedArray<Real> warm_density_, warm_divergence_;  // Σκ/ρ of the last step, times Δt², Δt
+  int density_iterations_ = 0, divergence_iterations_ = 0;
+  double density_iteration_sum_ = 0, divergence_iteration_sum_ = 0;
+  std::string failure_;
+};
+
+}  // namespace rtsph

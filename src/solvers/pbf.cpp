@@ -1,0 +1,242 @@
+// Position Based Fluids (Macklin & Müller 2013), Algorithm 1, one substep per step().
+//
+// Masses are kept (m = ρ0 V of the rest lattice), so with Cᵢ = ρᵢ/ρ0 − 1:
+//   ∇ᵢCᵢ = (1/ρ0)(Σⱼ m∇Wᵢⱼ + Σ_b Ψ_b∇W_ib),  ∇ⱼCᵢ = −(m/ρ0)∇Wᵢⱼ                        (eq. 8)
+//   λᵢ = −Cᵢ / (Σₖ|∇ₖCᵢ|² + ε)                                                           (eq. 11)
+//   Δxᵢ = (1/ρ0)[Σⱼ m(λᵢ + λⱼ + s_corr)∇Wᵢⱼ + Σ_b Ψ_b 2λᵢ∇W_ib]                        (eq. 14)
+// A boundary sample mirrors the particle's λ (as WCSPH's walls mirror its pressure), so the
+// layer next to a wall carries the hydrostatic load instead of twice it; Σₖ|∇ₖCᵢ|² uses the
+// same weights ((∇ᵢCᵢ with walls doubled)·∇ᵢCᵢ + Σⱼ|∇ⱼCᵢ|²), the Jacobi estimate of that system.
+// ε and s_corr are given relative to a particle inside the rest lattice, so the defaults mean
+// the same at every resolution.
+#include "solvers/pbf.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/pair_loop.h"
+#include "core/timer.h"
+
+namespace rtsph {
+
+using simd::f8;
+using simd::i8;
+
+template <int D>
+Pbf<D>::Pbf(const SimSpec& spec, int threads) : W(spec, threads) {
+  lattice_gradient_norm_ = this->lattice_gradient_sum() / (prm_.rho0 * prm_.rho0);
+  this->compute_density();
+  this->measure_density_error();
+  this->reset_stage_times();
+}
+
+// Algorithm 1: apply forces, predict, find neighbours, solve, update velocity, XSPH/vorticity.
+template <int D>
+void Pbf<D>::step() {
+  const double dt = choose_time_step();
+  {
+    ScopedTimer timer(times_.integrate_s);
+    this->accelerations({.viscosity = false});  // gravity + brush                     (line 2)
+    this->kick(dt);                              // vᵢ ⇐ vᵢ + Δt f_ext(xᵢ)
+    this->drift(dt);                             // x*ᵢ ⇐ xᵢ + Δt vᵢ                   (line 3)
+    this->advance_scene(this->time_ + dt, dt);   // obstacles, emitters, put-back
+  }
+  this->update_neighbours();                     // lines 5-7
+  save_predicted_positions();
+  solve_density_constraint(dt);                  // lines 8-19
+  {
+    ScopedTimer timer(times_.integrate_s);
+    update_velocity(dt);                         // line 21
+    this->put_back_escaped();
+  }
+  {
+    ScopedTimer timer(times_.density_s);
+    this->compute_density();                     // the density the corrections reached
+    this->measure_density_error();
+  }
+  xsph_and_vorticity(dt);                        // line 22
+  this->time_ += dt;
+  this->dt_ = dt;
+  ++this->steps_;
+}
+
+// A frame step split into substeps, shortened when the fastest particle would cross more than
+// cfl spacings (a particle that jumps past a wall sample in one substep is never pushed back).
+template <int D>
+double Pbf<D>::choose_time_step() const {
+  double dt = spec_.pbf_time_step / std::max(1, spec_.pbf_substeps);
+  if (spec_.pbf_cfl > 0) {
+    const double vmax = std::sqrt(this->max_speed_and_acceleration().v2);
+    if (vmax > 0) dt = std::min(dt, spec_.pbf_cfl * spec_.spacing / vmax);
+  }
+  return dt;
+}
+
+template <int D>
+void Pbf<D>::save_predicted_positions() {
+  const std::size_t n = fluid_.size();
+  for (int k = 0; k < D; ++k) {
+    predicted_[k].resize(n);
+    delta_[k].resize(n);
+    const Real* x = fluid_.x[k].data();
+    Real* out = predicted_[k].data();
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) { std::copy(x + b, x + e, out + b); });
+  }
+  lambda_.resize(n);
+  lambda_sum_.resize(n);
+  std::fill(lambda_sum_.begin(), lambda_sum_.begin() + n, Real(0));
+}
+
+template <int D>
+void Pbf<D>::solve_density_constraint(double dt) {
+  iterations_ = std::max(1, spec_.pbf_iterations);
+  for (int it = 0; it < iterations_; ++it) {
+    {
+      ScopedTimer timer(times_.density_s);
+      compute_lambda();
+    }
+    ScopedTimer timer(times_.forces_s);
+    apply_position_correction();
+  }
+  // Equivalent pressure: Δxᵢ = Δt² aᵢ with aᵢ = −Σⱼ m(pᵢ/ρᵢ² + pⱼ/ρⱼ²)∇Wᵢⱼ gives
+  // pᵢ = −ρᵢ² Σλᵢ / (ρ0 Δt²), summed over the iterations. Reported, never used.
+  const double scale = -1.0 / (prm_.rho0 * dt * dt);
+  const std::size_t n = fluid_.size();
+  pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i)
+      fluid_.p[i] = Real(scale * double(fluid_.rho[i]) * fluid_.rho[i] * lambda_sum_[i]);
+  });
+}
+
+// ρᵢ, Cᵢ and λᵢ in one pair loop (eqs. 2, 1, 11).
+template <int D>
+void Pbf<D>::compute_lambda() {
+  const std::size_t n = fluid_.size();
+  const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
+  const double inv_rho0 = 1.0 / prm_.rho0, inv_rho02 = inv_rho0 * inv_rho0;
+  const double eps = spec_.pbf_relaxation * lattice_gradient_norm_;
+  const bool clamp = spec_.clamp_negative_pressure;
+  const Real* fx[D];
+  const Real* bx[D];
+  for (int k = 0; k < D; ++k) { fx[k] = fluid_.x[k].data(); bx[k] = boundary_.x[k].data(); }
+  const Real* psi = boundary_.psi.data();
+  const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
+  Real* rho = fluid_.rho.data();
+  Real* lambda = lambda_.data();
+  Real* lambda_sum = lambda_sum_.data();
+  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        Real xi[D];
+        for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
+        f8 wf{}, wb{}, sq{}, gf[D] = {}, gb[D] = {};
+        for_each_candidate_batch<D>(ctx_.fluid_grid, cells[i], fx, xi, support2,
+                                    [&](uint32_t, const f8* d, f8 r2, i8 m) {
+                                      const f8 G = simd::select(m, K.grad_factor(r2), f8{});
+                                      wf += simd::select(m, K.value(r2), f8{});
+                                      sq += G * G * r2;
+                                      for (int k = 0; k < D; ++k) gf[k] += G * d[k];
+                                    });
+        for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
+                                    [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+                                      const f8 w = simd::select(m, simd::load(psi + j), f8{});
+                                      wb += w * K.value(r2);
+                                      const f8 G = w * K.grad_factor(r2);
+                                      for (int k = 0; k < D; ++k) gb[k] += G * d[k];
+                                    });
+        const double r = double(mass) * simd::hsum(wf) + simd::hsum(wb);
+        double dot = 0;
+        for (int k = 0; k < D; ++k) {
+          const double f = double(mass) * simd::hsum(gf[k]), w = simd::hsum(gb[k]);
+          dot += (f + 2.0 * w) * (f + w);
+        }
+        const double grad2 = (dot + double(mass) * mass * simd::hsum(sq)) * inv_rho02;
+        double C = r * inv_rho0 - 1.0;
+        if (clamp) C = std::max(C, 0.0);
+        const double l = -C / (grad2 + eps);
+        rho[i] = Real(r);
+        lambda[i] = Real(l);
+        lambda_sum[i] += Real(l);
+      }
+    });
+  });
+}
+
+// Δxᵢ (eq. 14) with the artificial pressure s_corr = −k (W(r)/W(Δq))ⁿ (eq. 13), then x += Δx.
+template <int D>
+void Pbf<D>::apply_position_correction() {
+  const std::size_t n = fluid_.size();
+  const Real support2 = Real(prm_.support * prm_.support);
+  const Real mass_over_rho0 = Real(prm_.mass / prm_.rho0), inv_rho0 = Real(1.0 / prm_.rho0);
+  // s_corr in units of a unit constraint's λ inside the rest lattice, −1/Σ|∇C|².
+  const Real k_corr = Real(spec_.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30));
+  const int n_corr = spec_.pbf_scorr_n;
+  const double dq = spec_.pbf_scorr_dq * prm_.support;
+  const Real* fx[D];
+  const Real* bx[D];
+  for (int k = 0; k < D; ++k) { fx[k] = fluid_.x[k].data(); bx[k] = boundary_.x[k].data(); }
+  const Real* psi = boundary_.psi.data();
+  const Real* lambda = lambda_.data();
+  const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
+  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+    const Real inv_w_dq = Real(1.0 / double(K.value(float(dq * dq))));
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        Real xi[D];
+        for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
+        const Real li = lambda[i];
+        f8 acc[D] = {}, accb[D] = {};
+        for_each_candidate_batch<D>(ctx_.fluid_grid, cells[i], fx, xi, support2,
+                                    [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+                                      const f8 q = K.value(r2) * inv_w_dq;
+                                      f8 qn = q;
+                                      for (int p = 1; p < n_corr; ++p) qn *= q;
+                                      const f8 s = li + simd::load(lambda + j) - k_corr * qn;
+                                      const f8 c = simd::select(m, s * K.grad_factor(r2), f8{});
+                                      for (int k = 0; k < D; ++k) acc[k] += c * d[k];
+                                    });
+        for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
+                                    [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+                                      const f8 c = simd::select(m, simd::load(psi + j) * K.grad_factor(r2), f8{});
+                                      for (int k = 0; k < D; ++k) accb[k] += c * d[k];
+                                    });
+        for (int k = 0; k < D; ++k)
+          delta_[k][i] = mass_over_rho0 * simd::hsum(acc[k]) + 2.0f * li * inv_rho0 * simd::hsum(accb[k]);
+      }
+    });
+  });
+  // Jacobi: every Δx comes from the same positions, then all move at once.
+  pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (int k = 0; k < D; ++k) {
+      Real* x = fluid_.x[k].data();
+      const Real* dx = delta_[k].data();
+      for (std::size_t i = b; i < e; ++i) x[i] += dx[i];
+    }
+  });
+}
+
+// vᵢ = (x*ᵢ − xᵢ)/Δt. The predicted step already moved xᵢ by vᵢΔt, so only the correction the
+// solver added changes the velocity; particles emitted or put back this step stay consistent.
+template <int D>
+void Pbf<D>::update_velocity(double dt) {
+  const Real inv_dt = Real(1.0 / dt);
+  pool_.parallel_for(fluid_.size(), [&](std::size_t b, std::size_t e) {
+    for (int k = 0; k < D; ++k) {
+      Real* v = fluid_.v[k].data();
+      const Real* x = fluid_.x[k].data();
+      const Real* xp = predicted_[k].data();
+      for (std::size_t i = b; i < e; ++i) v[i] += (x[i] - xp[i]) * inv_dt;
+    }
+  });
+}
+
+template <int D>
+void Pbf<D>::add_method_stats(SimStats& s) const {
+  s.pressure_iterations = iterations_;
+  s.mean_pressure_iterations = iterations_;
+}
+
+template class Pbf<2>;
+template class Pbf<3>;
+
+}  // namespace rtsph

@@ -1,0 +1,35 @@
+#pragma once
+// Position Based Fluids (Macklin & Müller 2013): a density constraint Cᵢ = ρᵢ/ρ0 − 1 per
+// particle, solved by Jacobi iterations on predicted positions, so steps can be a frame long.
+// Walls and obstacles couple through the same Akinci boundary samples as every method.
+#include "solvers/fluid_world.h"
+
+namespace rtsph {
+
+template <int D>
+class Pbf final : public FluidWorld<D> {
+ public:
+  Pbf(const SimSpec& spec, int threads);
+  void step() override;
+
+ private:
+  using W = FluidWorld<D>;
+  using W::spec_, W::pool_, W::prm_, W::fluid_, W::boundary_, W::ctx_, W::times_;
+
+  double choose_time_step() const;
+  void save_predicted_positions();
+  void solve_density_constraint(double dt);  // λᵢ, then Δxᵢ (eqs. 11-14), Jacobi
+  void compute_lambda();
+  void apply_position_correction();
+  void update_velocity(double dt);           // vᵢ = (x*ᵢ − xᵢ)/Δt (Algorithm 1, line 21)
+  void xsph_and_vorticity(double dt);        // eqs. 15-17
+  void add_method_stats(SimStats& s) const override;
+
+  double lattice_gradient_norm_ = 0;  // Σⱼ|∇ⱼCᵢ|² of a particle inside the rest lattice (1/m²)
+  AlignedArray<Real> lambda_, lambda_sum_;
+  std::array<AlignedArray<Real>, D> predicted_, delta_;
+  AlignedArray<Real> omega_[D == 2 ? 1 : 3];
+  int iterations_ = 0;
+};
+
+}  // namespace rtsph

@@ -10,7 +10,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <cstdlib>
 
 #include "core/pair_loop.h"
 #include "core/timer.h"
@@ -158,7 +157,6 @@ int Dfsph<D>::solve(double dt, AlignedArray<Real>& total, double tolerance, cons
     });
     err = residual(kDensity, dt, total);
     ++it;
-    if (std::getenv("RTSPH_DEBUG")) std::fprintf(stderr, "%s it %d err %g\n", name, it, err);
   }
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) total[i] = Real(total[i] / to_p);

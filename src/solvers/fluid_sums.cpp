@@ -56,6 +56,7 @@ void FluidWorld<D>::compute_density() {
 // forces, then pressure alone in its solver loops) pays only for what it uses.
 template <int D>
 void FluidWorld<D>::accelerations(const ForceTerms& t) {
+  if (fluid_.size() == 0) return;
   const bool p = t.pressure != nullptr;
   if (p && t.viscosity && t.external) return accelerations_impl<true, true, true>(t);
   if (p && !t.viscosity && !t.external) return accelerations_impl<true, false, false>(t);

@@ -128,6 +128,11 @@ void FluidWorld<D>::state_loaded() {
   for (int k = 0; k < D; ++k) xs[k] = boundary_.x[k].data();
   ctx_.boundary_grid.build(xs, boundary_.size(), pool_);
   boundary_.permute(ctx_.boundary_grid.order(), ctx_.tmp, pool_);
+  // The fluid was saved in cell order (DFSPH and WCSPH save right after a sort and only change
+  // velocities after it), and the counting sort is stable, so this rebuilds the same cell
+  // ranges without moving a particle; DFSPH's first pair loop of the next step reads them.
+  for (int k = 0; k < D; ++k) xs[k] = fluid_.x[k].data();
+  ctx_.fluid_grid.build(xs, fluid_.size(), pool_);
 }
 
 template <int D>

@@ -1,0 +1,200 @@
+// Every registered method on the shared framework: bitwise identical for 1 and 2 threads,
+// bitwise exact checkpoint resume (with emitters and a moving obstacle), every built-in scene
+// runs, and the properties each method promises (DFSPH's density tolerance and convergence,
+// PBF's reported density error).
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "io/checkpoint.h"
+#include "io/fnv.h"
+#include "scene/scene.h"
+#include "solvers/health.h"
+#include "test_scenes.h"
+
+namespace fs = std::filesystem;
+
+namespace rtsph {
+namespace {
+
+double scale() {  // shorter runs under a sanitizer (RTSPH_SANITIZER=1), same checks
+  const char* s = std::getenv("RTSPH_SANITIZER");
+  return s && *s && std::string(s) != "0" ? 0.25 : 1.0;
+}
+
+void run_until(Simulation& sim, double t) {
+  while (sim.time() < t) sim.step();
+}
+
+std::vector<std::pair<std::string, std::string>> state_of(Simulation& sim) {
+  std::vector<std::pair<std::string, std::string>> out;
+  for (const auto& f : sim.state_fields())
+    out.emplace_back(f.name, std::string(static_cast<const char*>(f.data), f.bytes));
+  return out;
+}
+
+void expect_same_state(Simulation& a, Simulation& b) {
+  const auto sa = state_of(a), sb = state_of(b);
+  ASSERT_EQ(sa.size(), sb.size());
+  for (std::size_t i = 0; i < sa.size(); ++i) {
+    EXPECT_EQ(sa[i].first, sb[i].first);
+    EXPECT_TRUE(sa[i].second == sb[i].second) << "field " << sa[i].first << " differs";
+  }
+  EXPECT_EQ(a.step_count(), b.step_count());
+  EXPECT_EQ(a.time(), b.time());
+}
+
+SimSpec with_method(SimSpec s, const std::string& method) {
+  s.method = method;
+  return s;
+}
+
+class Methods : public ::testing::TestWithParam<std::string> {};
+
+TEST_P(Methods, AreRegistered) {
+  const auto names = solver_methods();
+  EXPECT_NE(std::find(names.begin(), names.end(), GetParam()), names.end());
+  auto sim = make_simulation(with_method(test::dam_break_2d(0.2, 0.02), GetParam()), 1);
+  EXPECT_EQ(sim->stats().method, GetParam());
+}
+
+TEST_P(Methods, OneAndTwoThreadsAreBitwiseIdentical) {
+  for (int dim : {2, 3}) {
+    SimSpec s = dim == 2 ? test::dam_break_2d(0.2, 0.01) : test::tank(3, 0.2, 0.15, 0.02);
+    if (dim == 3) s.fluid_blocks[0].max = {{0.08, 0.15, 0.2}};  // a column that collapses
+    s = with_method(s, GetParam());
+    auto one = make_simulation(s, 1), two = make_simulation(s, 2);
+    run_until(*one, 0.1 * scale());
+    run_until(*two, 0.1 * scale());
+    SCOPED_TRACE(std::to_string(dim) + "D");
+    EXPECT_GT(one->step_count(), 3u);
+    expect_same_state(*one, *two);
+  }
+}
+
+TEST_P(Methods, ResumeIsBitwiseExactWithEmittersAndMovingObstacle) {
+  SimSpec s = with_method(load_scene("nozzle_moving_obstacle_2d"), GetParam());
+  const double T = 0.15 * scale();
+  const fs::path file = fs::temp_directory_path() /
+                        ("rtsph_methods_" + GetParam() + std::to_string(::getpid()) + ".ckpt");
+  const std::uint64_t hash = io::hash_bytes(scene_to_json(s));
+  auto straight = make_simulation(s, 2);
+  run_until(*straight, T);
+  const auto n_at_T = straight->fluid().count;
+  run_until(*straight, 2 * T);
+  EXPECT_GT(straight->fluid().count, n_at_T) << "the emitter should keep adding particles";
+  {
+    auto first = make_simulation(s, 2);
+    run_until(*first, T);
+    io::write_checkpoint(file, *first, hash);
+  }
+  auto resumed = make_simulation(s, 2);
+  io::read_checkpoint(file, *resumed, hash);
+  run_until(*resumed, 2 * T);
+  expect_same_state(*straight, *resumed);
+  fs::remove(file);
+}
+
+TEST_P(Methods, SnapshotRestoreIsBitwiseExact) {
+  SimSpec s = with_method(test::dam_break_2d(0.2, 0.01), GetParam());
+  auto sim = make_simulation(s, 2);
+  run_until(*sim, 0.05 * scale());
+  StateSnapshot snap;
+  snap.capture(*sim);
+  auto other = make_simulation(s, 2);
+  snap.restore(*other);
+  for (int i = 0; i < 5; ++i) { sim->step(); other->step(); }
+  expect_same_state(*sim, *other);
+}
+
+// Every built-in scene starts and takes steps with every method, and stays healthy.
+TEST_P(Methods, RunEveryBuiltInScene) {
+  for (const auto& [name, description] : builtin_scenes()) {
+    SimSpec s = load_scene(name);
+    s.method = GetParam();
+    s.spacing *= s.dimension == 3 ? 3.0 : 2.0;  // coarse: this checks wiring, not physics
+    auto sim = make_simulation(s, 2);
+    for (int i = 0; i < 8; ++i) sim->step();
+    SCOPED_TRACE(name);
+    EXPECT_FALSE(check_health(*sim).has_value()) << check_health_message(*sim).value_or("");
+    EXPECT_GT(sim->time(), 0.0);
+  }
+}
+
+INSTANTIATE_TEST_SUITE_P(All, Methods, ::testing::Values("wcsph", "pbf", "dfsph"),
+                         [](const auto& info) { return info.param; });
+
+// DFSPH keeps the mean density error at its tolerance through a collapsing column, with the
+// mean iteration counts bounded, and a tighter tolerance gives a smaller error.
+double dfsph_mean_error(double tolerance, double* worst, double* iterations) {
+  SimSpec s = with_method(test::dam_break_2d(0.25, 0.0125), "dfsph");
+  s.dfsph_max_density_error = tolerance;
+  auto sim = make_simulation(s, 2);
+  double sum = 0;
+  int n = 0;
+  *worst = 0;
+  while (sim->time() < 0.3 * scale()) {
+    sim->step();
+    const auto st = sim->stats();
+    sum += st.mean_density_error;
+    *worst = std::max(*worst, st.mean_density_error);
+    ++n;
+  }
+  *iterations = sim->stats().mean_pressure_iterations;
+  return sum / n;
+}
+
+TEST(Dfsph, HoldsItsDensityToleranceAndConverges) {
+  double worst_loose, worst_tight, it_loose, it_tight;
+  const double loose = dfsph_mean_error(1e-2, &worst_loose, &it_loose);
+  const double tight = dfsph_mean_error(1e-4, &worst_tight, &it_tight);
+  std::printf("DFSPH mean density error: tolerance 1%% -> %.4f%% (worst step %.4f%%, %.1f it/step); "
+              "0.01%% -> %.4f%% (worst %.4f%%, %.1f it/step)\n",
+              100 * loose, 100 * worst_loose, it_loose, 100 * tight, 100 * worst_tight, it_tight);
+  EXPECT_LT(tight, loose);
+  EXPECT_GT(it_tight, it_loose);
+  EXPECT_LT(it_tight, 100.0);  // bounded: never at the cap on average
+  // The solve stops at the tolerance on the predicted density; the density measured after the
+  // drift may exceed it by the part the projection could not see (walls, emitted particles).
+  EXPECT_LT(worst_tight, 2e-3);
+}
+
+// PBF reports the density error its constraint solve leaves, and more Jacobi iterations leave
+// less of it (the solve converges). The goal of ≤ 1% at default settings is not met
+// yet (2.4% worst step here, docs/performance.md); this test records the figure.
+double pbf_worst_error(int iterations, int* reported) {
+  SimSpec s = with_method(test::dam_break_2d(0.25, 0.0125), "pbf");
+  s.pbf_iterations = iterations;
+  auto sim = make_simulation(s, 2);
+  double worst = 0;
+  while (sim->time() < 0.3 * scale()) {
+    sim->step();
+    worst = std::max(worst, sim->stats().mean_density_error);
+  }
+  *reported = sim->stats().pressure_iterations;
+  return worst;
+}
+
+TEST(Pbf, ReportsItsDensityErrorAndConverges) {
+  int it_default = 0, it_many = 0;
+  const int defaults = SimSpec{}.pbf_iterations;
+  const double e_default = pbf_worst_error(defaults, &it_default);
+  const double e_many = pbf_worst_error(4 * defaults, &it_many);
+  std::printf("PBF mean density error, worst step: %.3f%% at %d iterations, %.3f%% at %d\n",
+              100 * e_default, it_default, 100 * e_many, it_many);
+  EXPECT_EQ(it_default, defaults);
+  EXPECT_EQ(it_many, 4 * defaults);
+  EXPECT_GT(e_default, 0.0);  // a real measurement, not a placeholder
+  EXPECT_LT(e_many, 0.5 * e_default);
+  EXPECT_LT(e_default, 0.05);  // the column stands: no collapse
+}
+
+}  // namespace
+}  // namespace rtsph

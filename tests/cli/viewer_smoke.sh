@@ -3,11 +3,9 @@
 # brush stroke, obstacle move, screenshot, quit) must exit 0 and leave a non-blank PNG in which
 # the 2D obstacle is a filled solid.
 # Usage: viewer_smoke.sh RTSPH_BINARY SOURCE_DIR
-set -u
-bin=$(cd "$(dirname "$1")" && pwd)/$(basename "$1")
-src=${2:-.}
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
+set +e +o pipefail  # every check below runs and is counted; none stops the script
+bin=$rtsph
 
 run_x() {
   # Runs "$@" with a display: xvfb-run if present, else our own Xvfb, else skip.

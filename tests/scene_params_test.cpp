@@ -77,7 +77,12 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
                           "solver.kernel", "solver.smoothing_ratio", "solver.artificial_viscosity",
                           "solver.clamp_negative_pressure", "solver.time_step.mode",
                           "solver.time_step.cfl", "solver.time_step.dt", "solver.time_step.max_dt",
-                          "solver.boundary_layers", "gravity", "end_time"})
+                          "solver.boundary_layers", "solver.pbf.time_step", "solver.pbf.substeps",
+                          "solver.pbf.iterations", "solver.pbf.cfl", "solver.pbf.relaxation",
+                          "solver.pbf.scorr_k", "solver.pbf.scorr_n", "solver.pbf.scorr_dq",
+                          "solver.pbf.xsph", "solver.pbf.vorticity",
+                          "solver.dfsph.max_density_error", "solver.dfsph.max_divergence_error",
+                          "solver.dfsph.max_iterations", "gravity", "end_time"})
     EXPECT_NE(find_param(key), nullptr) << key;
   std::set<std::string> live;
   for (const auto& p : parameter_table())
@@ -85,7 +90,16 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
   EXPECT_EQ(live, (std::set<std::string>{"fluid.viscosity", "solver.artificial_viscosity",
                                          "solver.clamp_negative_pressure", "solver.time_step.mode",
                                          "solver.time_step.cfl", "solver.time_step.dt",
-                                         "solver.time_step.max_dt", "gravity"}));
+                                         "solver.time_step.max_dt", "gravity",
+                                         // every PBF and DFSPH parameter is read afresh each step
+                                         "solver.pbf.time_step", "solver.pbf.substeps",
+                                         "solver.pbf.iterations", "solver.pbf.cfl",
+                                         "solver.pbf.relaxation", "solver.pbf.scorr_k",
+                                         "solver.pbf.scorr_n", "solver.pbf.scorr_dq",
+                                         "solver.pbf.xsph", "solver.pbf.vorticity",
+                                         "solver.dfsph.max_density_error",
+                                         "solver.dfsph.max_divergence_error",
+                                         "solver.dfsph.max_iterations"}));
   EXPECT_EQ(find_param("solver.method")->choices, solver_methods());
 }
 

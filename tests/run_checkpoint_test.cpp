@@ -16,6 +16,7 @@
 #include "io/fnv.h"
 #include "scene/scene.h"
 #include "solvers/health.h"
+#include "state_compare.h"
 #include "test_scenes.h"
 
 namespace fs = std::filesystem;
@@ -36,23 +37,7 @@ void run_until(Simulation& sim, double t) {
   while (sim.time() < t) sim.step();
 }
 
-/// Every state field as (name, bytes).
-std::vector<std::pair<std::string, std::string>> state_of(Simulation& sim) {
-  std::vector<std::pair<std::string, std::string>> out;
-  for (const auto& f : sim.state_fields()) out.emplace_back(f.name, std::string(static_cast<const char*>(f.data), f.bytes));
-  return out;
-}
-
-void expect_same_state(Simulation& a, Simulation& b) {
-  const auto sa = state_of(a), sb = state_of(b);
-  ASSERT_EQ(sa.size(), sb.size());
-  for (std::size_t i = 0; i < sa.size(); ++i) {
-    EXPECT_EQ(sa[i].first, sb[i].first);
-    EXPECT_TRUE(sa[i].second == sb[i].second) << "field " << sa[i].first << " differs";
-  }
-  EXPECT_EQ(a.step_count(), b.step_count());
-  EXPECT_EQ(a.time(), b.time());
-}
+using test::expect_same_state;
 
 class TempDir {
  public:

@@ -31,11 +31,7 @@ template <int D>
 void Dfsph<D>::compute_factors() {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
-  const Real* fx[D];
-  const Real* bx[D];
-  for (int k = 0; k < D; ++k) { fx[k] = fluid_.x[k].data(); bx[k] = boundary_.x[k].data(); }
-  const Real* psi = boundary_.psi.data();
-  const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
+  const auto [fx, fv, bx, bv, psi, cells] = this->pair_arrays();
   // Below this the particle has (almost) no neighbours: no pressure can act on it.
   const double tiny = 1e-6 * this->lattice_gradient_sum();
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
@@ -79,16 +75,7 @@ template <int D>
 double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& total) {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
-  const Real* fx[D];
-  const Real* fv[D];
-  const Real* bx[D];
-  const Real* bv[D];
-  for (int k = 0; k < D; ++k) {
-    fx[k] = fluid_.x[k].data(); fv[k] = fluid_.v[k].data();
-    bx[k] = boundary_.x[k].data(); bv[k] = boundary_.v[k].data();
-  }
-  const Real* psi = boundary_.psi.data();
-  const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
+  const auto [fx, fv, bx, bv, psi, cells] = this->pair_arrays();
   const double rho0 = prm_.rho0, inv_rho0 = 1.0 / rho0;
   const bool clamp = spec_.clamp_negative_pressure;
   const double to_p = density ? 1.0 / (dt * dt) : 1.0 / dt;

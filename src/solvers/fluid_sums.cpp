@@ -17,11 +17,7 @@ template <int D>
 void FluidWorld<D>::compute_density() {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
-  const Real* fx[D];
-  const Real* bx[D];
-  for (int k = 0; k < D; ++k) { fx[k] = fluid_.x[k].data(); bx[k] = boundary_.x[k].data(); }
-  const Real* psi = boundary_.psi.data();
-  const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
+  const auto [fx, fv, bx, bv, psi, cells] = pair_arrays();
   Real* rho = fluid_.rho.data();
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
@@ -73,21 +69,12 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
   const Real eps = Real(0.01 * prm_.h * prm_.h);
   const Real ach = Real(spec_.artificial_viscosity * prm_.c0 * prm_.h);
   const Real nu = Real(spec_.viscosity);
-  const Real* fx[D];
-  const Real* fv[D];
-  const Real* bx[D];
-  const Real* bv[D];
-  for (int k = 0; k < D; ++k) {
-    fx[k] = fluid_.x[k].data(); fv[k] = fluid_.v[k].data();
-    bx[k] = boundary_.x[k].data(); bv[k] = boundary_.v[k].data();
-  }
-  const Real* psi = boundary_.psi.data();
+  const auto [fx, fv, bx, bv, psi, cells] = pair_arrays();
   const Real* Pb = terms.boundary_pressure;
   const bool mirror = terms.mirror_boundary;
   const Real* rho = fluid_.rho.data();
   const Real* P = terms.pressure;
   const Real* inv_rho = ctx_.inv_rho.data();
-  const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
   Real g[D];
   for (int k = 0; k < D; ++k) g[k] = Real(spec_.gravity[k]);
   const Brush brush = brush_;

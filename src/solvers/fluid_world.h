@@ -62,6 +62,18 @@ struct ForceTerms {
   bool external = true;    // gravity and the brush
 };
 
+/// What a pair loop over fluid and boundary neighbours reads, gathered once per sum:
+/// `const auto [fx, fv, bx, bv, psi, cells] = pair_arrays();`
+template <int D>
+struct PairArrays {
+  const Real* fx[D];     // fluid positions, velocities (cell order)
+  const Real* fv[D];
+  const Real* bx[D];     // boundary positions, velocities
+  const Real* bv[D];
+  const Real* psi;       // boundary Ψ
+  const uint32_t* cells; // fluid particle i's cell in either grid
+};
+
 template <int D>
 class FluidWorld : public Simulation {
  public:
@@ -124,6 +136,18 @@ class FluidWorld : public Simulation {
   void extrapolate_boundary_pressure();  // p_b from fluid_.p (Adami et al. 2012, eq. 27)
   /// aᵢ (fluid_.a) = pressure + viscosity + gravity + brush, as `terms` selects; one pair loop.
   void accelerations(const ForceTerms& terms);
+  PairArrays<D> pair_arrays() const {
+    PairArrays<D> a;
+    for (int k = 0; k < D; ++k) {
+      a.fx[k] = fluid_.x[k].data();
+      a.fv[k] = fluid_.v[k].data();
+      a.bx[k] = boundary_.x[k].data();
+      a.bv[k] = boundary_.v[k].data();
+    }
+    a.psi = boundary_.psi.data();
+    a.cells = ctx_.fluid_grid.sorted_cells();
+    return a;
+  }
   /// Σⱼ |m∇Wᵢⱼ|² for a particle inside the rest lattice (kg²/m^(2d+2)): the scale of the
   /// implicit methods' diagonals (PBF's Σ|∇C|², DFSPH's 1/α), for relative tolerances.
   double lattice_gradient_sum() const;

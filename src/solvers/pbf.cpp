@@ -116,11 +116,7 @@ void Pbf<D>::compute_lambda() {
   const double inv_rho0 = 1.0 / prm_.rho0, inv_rho02 = inv_rho0 * inv_rho0;
   const double eps = spec_.pbf_relaxation * lattice_gradient_norm_;
   const bool clamp = spec_.clamp_negative_pressure;
-  const Real* fx[D];
-  const Real* bx[D];
-  for (int k = 0; k < D; ++k) { fx[k] = fluid_.x[k].data(); bx[k] = boundary_.x[k].data(); }
-  const Real* psi = boundary_.psi.data();
-  const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
+  const auto [fx, fv, bx, bv, psi, cells] = this->pair_arrays();
   Real* rho = fluid_.rho.data();
   Real* lambda = lambda_.data();
   Real* lambda_sum = lambda_sum_.data();
@@ -172,12 +168,8 @@ void Pbf<D>::apply_position_correction() {
   const Real k_corr = Real(spec_.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30));
   const int n_corr = spec_.pbf_scorr_n;
   const double dq = spec_.pbf_scorr_dq * prm_.support;
-  const Real* fx[D];
-  const Real* bx[D];
-  for (int k = 0; k < D; ++k) { fx[k] = fluid_.x[k].data(); bx[k] = boundary_.x[k].data(); }
-  const Real* psi = boundary_.psi.data();
+  const auto [fx, fv, bx, bv, psi, cells] = this->pair_arrays();
   const Real* lambda = lambda_.data();
-  const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
     const Real inv_w_dq = Real(1.0 / double(K.value(float(dq * dq))));
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {

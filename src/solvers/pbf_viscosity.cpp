@@ -29,17 +29,8 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
     for (auto& o : omega_) o.resize(n);
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
   const Real cx = Real(c), inv_rho0 = Real(1.0 / prm_.rho0);
-  const Real* fx[D];
-  const Real* fv[D];
-  const Real* bx[D];
-  const Real* bv[D];
-  for (int k = 0; k < D; ++k) {
-    fx[k] = fluid_.x[k].data(); fv[k] = fluid_.v[k].data();
-    bx[k] = boundary_.x[k].data(); bv[k] = boundary_.v[k].data();
-  }
-  const Real* psi = boundary_.psi.data();
+  const auto [fx, fv, bx, bv, psi, cells] = this->pair_arrays();
   const Real* rho = fluid_.rho.data();
-  const uint32_t* cells = ctx_.fluid_grid.sorted_cells();
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {

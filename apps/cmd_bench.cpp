@@ -7,6 +7,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "apps/bench.h"
 #include "apps/commands.h"
 #include "apps/run_summary.h"
 #include "io/atomic_file.h"
@@ -15,18 +16,7 @@
 
 namespace rtsph::app {
 
-namespace {
-struct BenchOptions {
-  int dim = 3;
-  std::string particles = "10000,60000";
-  int threads = 0;
-  int steps = 30;
-  std::string json;
-};
-
-/// The built-in dam break with its spacing chosen so the column holds about n particles, and
-/// h = spacing (support 2 spacings, ~33 neighbours in 3D) as the performance target specifies.
-SimSpec dam_break_with(int dim, double n) {
+SimSpec dam_break_with(int dim, double n, const std::string& method) {
   SimSpec s = load_scene(dim == 2 ? "dam_break_2d" : "dam_break_3d");
   double volume = 0;
   for (const auto& b : s.fluid_blocks) {
@@ -37,9 +27,11 @@ SimSpec dam_break_with(int dim, double n) {
   s.spacing = std::pow(volume / n, 1.0 / dim);
   s.smoothing_ratio = 1.0;
   s.kernel = KernelType::CubicSpline;
+  s.method = method;
   return s;
 }
 
+namespace {
 int bench(const BenchOptions& o) {
   std::vector<double> sizes;
   std::stringstream ss(o.particles);
@@ -53,13 +45,13 @@ int bench(const BenchOptions& o) {
       throw std::invalid_argument(fmt::format("--particles: '{}': expected counts in [1, 1e9]", item));
   }
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
-  fmt::print("rtsph bench: {}D dam break, WCSPH, cubic spline, h = spacing, {} threads, {} steps\n",
-             o.dim, threads, o.steps);
+  fmt::print("rtsph bench: {}D dam break, {}, cubic spline, h = spacing, {} threads, {} steps\n",
+             o.dim, o.method, threads, o.steps);
   fmt::print("{:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>12} {:>8}\n", "fluid", "boundary",
              "ms/step", "neigh", "density", "forces", "integr", "particle-st/s", "B/part");
   nlohmann::ordered_json rows = nlohmann::json::array();
   for (double n : sizes) {
-    auto sim = make_simulation(dam_break_with(o.dim, n), threads);
+    auto sim = make_simulation(dam_break_with(o.dim, n, o.method), threads);
     for (int i = 0; i < 3; ++i) sim->step();  // warm caches and allocations
     sim->reset_stage_times();
     const auto t0 = std::chrono::steady_clock::now();
@@ -87,6 +79,7 @@ int bench(const BenchOptions& o) {
   if (!o.json.empty()) {
     nlohmann::ordered_json j;
     j["dimension"] = o.dim;
+    j["method"] = o.method;
     j["threads"] = threads;
     j["steps"] = o.steps;
     j["rows"] = rows;
@@ -103,8 +96,15 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--particles", o->particles, "Comma-separated fluid particle counts");
   cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
   cmd->add_option("--steps", o->steps, "Timed steps per size")->check(CLI::Range(1, 1000000));
+  cmd->add_option("--method", o->method, "Solver method")->check(CLI::IsMember(solver_methods()));
   cmd->add_option("--json", o->json, "Write the table as JSON to this file");
-  cmd->callback([o, &exit_code] { exit_code = guarded([&] { return bench(*o); }); });
+  cmd->add_flag("--realtime", o->realtime,
+                "Search for the largest dam break this method runs in real time");
+  cmd->add_option("--window", o->window_s, "Simulated seconds each --realtime probe measures")
+      ->check(CLI::Range(0.05, 100.0));
+  cmd->callback([o, &exit_code] {
+    exit_code = guarded([&] { return o->realtime ? bench_realtime(*o) : bench(*o); });
+  });
 }
 
 }  // namespace rtsph::app

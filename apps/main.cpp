@@ -20,6 +20,10 @@ int main(int argc, char** argv) {
 #endif
   CLI::App app{"rtsph: real-time SPH fluid simulation"};
   app.require_subcommand(1);
+  // Bad arguments get one line, like bad scenes (CLI11's default adds a second).
+  app.failure_message([](const CLI::App*, const CLI::Error& e) {
+    return "rtsph: " + std::string(e.what()) + " (rtsph --help lists the options)\n";
+  });
   int exit_code = 0;
   rtsph::app::add_run_command(app, exit_code);
   rtsph::app::add_bench_command(app, exit_code);

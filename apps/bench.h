@@ -1,0 +1,29 @@
+#pragma once
+// `rtsph bench`: the throughput table (cmd_bench.cpp) and the real-time capacity search
+// (bench_realtime.cpp), both on the built-in dam break.
+#include <string>
+
+#include "solvers/spec.h"
+
+namespace rtsph::app {
+
+struct BenchOptions {
+  int dim = 3;
+  std::string method = "wcsph";
+  std::string particles = "10000,60000";
+  int threads = 0;
+  int steps = 30;
+  std::string json;
+  bool realtime = false;
+  double window_s = 1.0;  // simulated time each real-time probe measures
+};
+
+/// The built-in dam break with its spacing chosen so the column holds about n particles, run by
+/// `method`, with h = spacing and the cubic spline (the performance target's setup).
+SimSpec dam_break_with(int dim, double n, const std::string& method);
+
+/// Bisects on the particle count for the largest dam break that `method` advances at ≥ 1 s of
+/// simulated time per second of wall time, over the first window_s simulated seconds.
+int bench_realtime(const BenchOptions& o);
+
+}  // namespace rtsph::app

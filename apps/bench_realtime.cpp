@@ -1,0 +1,105 @@
+// `rtsph bench --realtime`: how large a dam break a method keeps up with in real time here.
+// Each probe builds the dam break at a particle count, runs its first `window` simulated seconds
+// (the collapse, the violent phase) and divides simulated by wall time, construction excluded.
+// The count is doubled or halved until the real-time factor brackets 1, then bisected
+// geometrically to within 10%.
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+#include <omp.h>
+
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "apps/bench.h"
+#include "io/atomic_file.h"
+#include "solvers/simulation.h"
+
+namespace rtsph::app {
+
+namespace {
+struct Probe {
+  std::size_t fluid = 0;
+  std::uint64_t steps = 0;
+  double sim_s = 0, wall_s = 0;
+  double rtf() const { return wall_s > 0 ? sim_s / wall_s : 0; }
+};
+
+// A probe that has fallen three times behind real time stops early: its factor is known to be
+// well below 1, and a large slow probe would otherwise cost minutes.
+Probe probe(const BenchOptions& o, double n, int threads) {
+  auto sim = make_simulation(dam_break_with(o.dim, n, o.method), threads);
+  Probe p;
+  p.fluid = sim->stats().fluid_particles;
+  const auto t0 = std::chrono::steady_clock::now();
+  while (sim->time() < o.window_s) {
+    sim->step();
+    p.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (p.wall_s > 3 * o.window_s) break;
+  }
+  p.sim_s = sim->time();
+  p.steps = sim->step_count();
+  return p;
+}
+}  // namespace
+
+int bench_realtime(const BenchOptions& o) {
+  const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
+  fmt::print("rtsph bench --realtime: {}D dam break, {}, {} threads, first {} s simulated\n",
+             o.dim, o.method, threads, o.window_s);
+  fmt::print("{:>9} {:>7} {:>9} {:>9} {:>8}\n", "fluid", "steps", "sim s", "wall s", "RTF");
+  nlohmann::ordered_json rows = nlohmann::json::array();
+  auto run = [&](double n) {
+    const Probe p = probe(o, n, threads);
+    fmt::print("{:>9} {:>7} {:>9.3f} {:>9.3f} {:>8.3f}\n", p.fluid, p.steps, p.sim_s, p.wall_s,
+               p.rtf());
+    std::fflush(stdout);
+    rows.push_back({{"fluid_particles", p.fluid}, {"steps", p.steps}, {"sim_s", p.sim_s},
+                    {"wall_s", p.wall_s}, {"real_time_factor", p.rtf()}});
+    return p;
+  };
+  // Bracket: lo keeps up (or is the smallest size tried), hi does not.
+  double n = 2000, lo = 0, hi = 0;
+  std::size_t best = 0;
+  for (int i = 0; i < 12 && (lo == 0 || hi == 0); ++i) {
+    const Probe p = run(n);
+    if (p.rtf() >= 1) {
+      lo = n;
+      best = p.fluid;
+      n *= 2;
+    } else {
+      hi = n;
+      n /= 2;
+    }
+    if (n < 50) break;
+  }
+  while (lo > 0 && hi > 0 && hi / lo > 1.1) {
+    const double mid = std::sqrt(lo * hi);
+    const Probe p = run(mid);
+    if (p.rtf() >= 1) {
+      lo = mid;
+      best = p.fluid;
+    } else {
+      hi = mid;
+    }
+  }
+  if (best > 0)
+    fmt::print("real-time capacity: {} fluid particles ({}D, {}, {} threads)\n", best, o.dim,
+               o.method, threads);
+  else
+    fmt::print("real-time capacity: none: even the smallest dam break tried runs slower than "
+               "real time\n");
+  if (!o.json.empty()) {
+    nlohmann::ordered_json j;
+    j["dimension"] = o.dim;
+    j["method"] = o.method;
+    j["threads"] = threads;
+    j["window_s"] = o.window_s;
+    j["capacity_fluid_particles"] = best;
+    j["probes"] = rows;
+    io::write_file_atomic(o.json, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
+  }
+  return 0;
+}
+
+}  // namespace rtsph::app

@@ -1,0 +1,38 @@
+#!/bin/bash
+# `rtsph bench --method M` and `rtsph bench --realtime`: each method's table, the capacity search
+# (structure and consistency only; speed is measured in benchmarks, never asserted) and bad
+# input.
+source "$(dirname "${BASH_SOURCE[0]}")/lib.sh" "$@"
+
+for m in wcsph pbf dfsph; do
+  "$rtsph" bench --dim 2 --method $m --particles 500 --steps 3 --json b_$m.json >out.txt
+  grep -q "2D dam break, $m" out.txt || fail "bench --method $m: header does not name the method"
+  python3 - "$m" <<'PY' || fail "bench --method $m: bad JSON"
+import json, sys
+j = json.load(open(f"b_{sys.argv[1]}.json"))
+assert j["method"] == sys.argv[1] and len(j["rows"]) == 1
+assert j["rows"][0]["fluid_particles"] > 0 and j["rows"][0]["fluid_particle_steps_per_s"] > 0
+PY
+done
+
+# A tiny window keeps this short; the answer is whichever probe kept up (or none).
+"$rtsph" bench --realtime --dim 2 --method dfsph --window 0.05 --json rt.json >out.txt
+grep -q "^real-time capacity: " out.txt || fail "bench --realtime printed no answer"
+python3 - <<'PY' || fail "bench --realtime: JSON inconsistent with its probes"
+import json
+j = json.load(open("rt.json"))
+assert j["method"] == "dfsph" and j["dimension"] == 2 and j["probes"]
+fast = [p["fluid_particles"] for p in j["probes"] if p["real_time_factor"] >= 1]
+assert j["capacity_fluid_particles"] == (max(fast) if fast else 0), j
+for p in j["probes"]:
+    assert p["steps"] > 0 and p["sim_s"] > 0 and p["wall_s"] > 0
+PY
+
+# Bad input: one line, exit 2.
+set +e
+"$rtsph" bench --method nope 2>err.txt >/dev/null
+rc=$?
+set -e
+[ $rc -ne 0 ] || fail "bench --method nope exited 0"
+[ "$(wc -l <err.txt)" -eq 1 ] || { cat err.txt; fail "bench --method nope: expected one line"; }
+echo "bench test passed"

@@ -22,6 +22,10 @@ namespace {
 // (measured: the error doubles every few sweeps); IISPH's ω = 0.5 (Ihmsen et al. 2014)
 // converges.
 constexpr double kRelax = 0.5;
+// Share of the last step's pressure the warm start applies. At 1 it pumps energy into a tank at
+// rest (measured, 2D tank: kinetic energy 5.8 J at 0.9 against 0.065 J at 0.5, bottom pressure
+// 1.72 against 1.03 of ρ0gH); at 0 the first sweeps start from nothing (1.06 of ρ0gH).
+constexpr double kWarm = 0.5;
 }  // namespace
 
 using simd::f8;
@@ -70,7 +74,7 @@ void Dfsph<D>::compute_factors() {
 // pressure goes to pressure_ (applied by the caller), projected so that the step's total
 // pressure (warm) stays ≥ 0 when negative pressure is clamped: a sweep can take back pressure
 // an earlier sweep or the warm start applied in excess, but never pull. Returns the mean
-// relative residual of compression.
+// relative residual (the complementarity error: |r| where pressure acts, compression elsewhere).
 template <int D>
 double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& total) {
   const std::size_t n = fluid_.size();
@@ -108,7 +112,11 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
         double p = thin ? 0.0 : total[i] + kRelax * r * factor_[i] * to_p;
         if (clamp) p = std::max(p, 0.0);
         pressure_[i] = Real(p - total[i]);
-        if (clamp || thin) r = thin ? 0.0 : std::max(r, 0.0);
+        // Where pressure acts, expansion is an error too (it is pressure applied in excess,
+        // e.g. by the warm start); where none acts, only compression is.
+        if (thin) r = 0.0;
+        else if (clamp) r = p > 0 ? std::abs(r) : std::max(r, 0.0);
+        else r = std::abs(r);
         sum += density ? r * inv_rho0 : r * dt * inv_rho0;
       }
       return sum;
@@ -127,10 +135,11 @@ template <bool kDensity>
 int Dfsph<D>::solve(double dt, AlignedArray<Real>& total, double tolerance, const char* name) {
   ScopedTimer timer(kDensity ? times_.density_s : times_.forces_s);
   const std::size_t n = fluid_.size();
-  // Warm start: the last step's total pressure, stored independent of Δt (κ ∝ 1/Δt², 1/Δt).
+  // Warm start: part of the last step's total pressure, stored independent of Δt (κ ∝ 1/Δt²,
+  // 1/Δt).
   const double to_p = kDensity ? 1.0 / (dt * dt) : 1.0 / dt;
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) total[i] = Real(total[i] * to_p);
+    for (std::size_t i = b; i < e; ++i) total[i] = Real(total[i] * to_p * kWarm);
   });
   apply_pressure(total.data(), dt);
   const int max_iterations = std::max(1, spec_.dfsph_max_iterations);
@@ -162,12 +171,6 @@ int Dfsph<D>::solve(double dt, AlignedArray<Real>& total, double tolerance, cons
 template <int D>
 double Dfsph<D>::correct_density_error(double dt) {
   density_iterations_ = solve<true>(dt, warm_density_, spec_.dfsph_max_density_error, "density");
-  // Pressure for output: p = κρ = Pρ², from the total of this step's density solve.
-  const double to_p = 1.0 / (dt * dt);
-  pool_.parallel_for(fluid_.size(), [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i)
-      fluid_.p[i] = Real(warm_density_[i] * to_p * double(fluid_.rho[i]) * fluid_.rho[i]);
-  });
   return density_iterations_;
 }
 
@@ -175,6 +178,15 @@ template <int D>
 double Dfsph<D>::correct_divergence_error(double dt) {
   divergence_iterations_ =
       solve<false>(dt, warm_divergence_, spec_.dfsph_max_divergence_error, "divergence");
+  // Pressure for output: both solves act as Δv = Δt·(−Σ m(Pᵢ + Pⱼ)∇W), so the step's pressure is
+  // p = ρ²(P_density + P_divergence) (κ = Pρ), from the totals stored as P·Δt² and P·Δt.
+  const double inv_dt = 1.0 / dt;
+  pool_.parallel_for(fluid_.size(), [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const double P = (warm_density_[i] * inv_dt + warm_divergence_[i]) * inv_dt;
+      fluid_.p[i] = Real(P * double(fluid_.rho[i]) * fluid_.rho[i]);
+    }
+  });
   return divergence_iterations_;
 }
 

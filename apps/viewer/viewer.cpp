@@ -593,12 +593,13 @@ void Viewer::draw_parameters() {
       }
       case ParamKind::Enum: {
         const auto& choices = p.choices_for(dim);
-        int v = int(p.get(edit_spec_));
+        // get_param/set_param handle enums stored as numbers and as strings (solver.method).
+        int v = int(get_param(edit_spec_, p.key));
         const char* cur = v >= 0 && v < int(choices.size()) ? choices[v].c_str() : "?";
         if (ImGui::BeginCombo(label.c_str(), cur)) {
           for (int i = 0; i < int(choices.size()); ++i)
             if (ImGui::Selectable(choices[i].c_str(), i == v)) {
-              p.set(edit_spec_, i);
+              set_param(edit_spec_, p.key, i);
               changed = true;
             }
           ImGui::EndCombo();

@@ -35,7 +35,10 @@ template <int D>
 void Dfsph<D>::compute_factors() {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
-  const auto [fx, fv, bx, bv, psi, cells] = this->pair_arrays();
+  const PairArrays<D> pa = this->pair_arrays();
+  [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
+  [[maybe_unused]] const Real* const psi = pa.psi;
+  const uint32_t* const cells = pa.cells;
   // Below this the particle has (almost) no neighbours: no pressure can act on it.
   const double tiny = 1e-6 * this->lattice_gradient_sum();
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
@@ -79,7 +82,10 @@ template <int D>
 double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& total) {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
-  const auto [fx, fv, bx, bv, psi, cells] = this->pair_arrays();
+  const PairArrays<D> pa = this->pair_arrays();
+  [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
+  [[maybe_unused]] const Real* const psi = pa.psi;
+  const uint32_t* const cells = pa.cells;
   const double rho0 = prm_.rho0, inv_rho0 = 1.0 / rho0;
   const bool clamp = spec_.clamp_negative_pressure;
   const double to_p = density ? 1.0 / (dt * dt) : 1.0 / dt;

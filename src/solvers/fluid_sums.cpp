@@ -17,7 +17,10 @@ template <int D>
 void FluidWorld<D>::compute_density() {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
-  const auto [fx, fv, bx, bv, psi, cells] = pair_arrays();
+  const PairArrays<D> pa = pair_arrays();
+  [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
+  [[maybe_unused]] const Real* const psi = pa.psi;
+  const uint32_t* const cells = pa.cells;
   Real* rho = fluid_.rho.data();
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
@@ -69,7 +72,10 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
   const Real eps = Real(0.01 * prm_.h * prm_.h);
   const Real ach = Real(spec_.artificial_viscosity * prm_.c0 * prm_.h);
   const Real nu = Real(spec_.viscosity);
-  const auto [fx, fv, bx, bv, psi, cells] = pair_arrays();
+  const PairArrays<D> pa = pair_arrays();
+  [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
+  [[maybe_unused]] const Real* const psi = pa.psi;
+  const uint32_t* const cells = pa.cells;
   const Real* Pb = terms.boundary_pressure;
   const bool mirror = terms.mirror_boundary;
   const Real* rho = fluid_.rho.data();

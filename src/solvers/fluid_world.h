@@ -62,8 +62,9 @@ struct ForceTerms {
   bool external = true;    // gravity and the brush
 };
 
-/// What a pair loop over fluid and boundary neighbours reads, gathered once per sum:
-/// `const auto [fx, fv, bx, bv, psi, cells] = pair_arrays();`
+/// What a pair loop over fluid and boundary neighbours reads, gathered once per sum. (Named
+/// references to its members, not a structured binding: clang 14, the fuzz build, cannot
+/// capture structured bindings in lambdas.)
 template <int D>
 struct PairArrays {
   const Real* fx[D];     // fluid positions, velocities (cell order)

@@ -116,7 +116,10 @@ void Pbf<D>::compute_lambda() {
   const double inv_rho0 = 1.0 / prm_.rho0, inv_rho02 = inv_rho0 * inv_rho0;
   const double eps = spec_.pbf_relaxation * lattice_gradient_norm_;
   const bool clamp = spec_.clamp_negative_pressure;
-  const auto [fx, fv, bx, bv, psi, cells] = this->pair_arrays();
+  const PairArrays<D> pa = this->pair_arrays();
+  [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
+  [[maybe_unused]] const Real* const psi = pa.psi;
+  const uint32_t* const cells = pa.cells;
   Real* rho = fluid_.rho.data();
   Real* lambda = lambda_.data();
   Real* lambda_sum = lambda_sum_.data();
@@ -168,7 +171,10 @@ void Pbf<D>::apply_position_correction() {
   const Real k_corr = Real(spec_.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30));
   const int n_corr = spec_.pbf_scorr_n;
   const double dq = spec_.pbf_scorr_dq * prm_.support;
-  const auto [fx, fv, bx, bv, psi, cells] = this->pair_arrays();
+  const PairArrays<D> pa = this->pair_arrays();
+  [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
+  [[maybe_unused]] const Real* const psi = pa.psi;
+  const uint32_t* const cells = pa.cells;
   const Real* lambda = lambda_.data();
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
     const Real inv_w_dq = Real(1.0 / double(K.value(float(dq * dq))));

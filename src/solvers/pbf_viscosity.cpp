@@ -29,7 +29,10 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
     for (auto& o : omega_) o.resize(n);
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
   const Real cx = Real(c), inv_rho0 = Real(1.0 / prm_.rho0);
-  const auto [fx, fv, bx, bv, psi, cells] = this->pair_arrays();
+  const PairArrays<D> pa = this->pair_arrays();
+  [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
+  [[maybe_unused]] const Real* const psi = pa.psi;
+  const uint32_t* const cells = pa.cells;
   const Real* rho = fluid_.rho.data();
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {

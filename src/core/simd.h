@@ -14,7 +14,21 @@ typedef float f8 __attribute__((vector_size(32)));
 typedef int i8 __attribute__((vector_size(32)));
 
 inline f8 load(const float* p) { f8 v; std::memcpy(&v, p, sizeof v); return v; }
+inline void store(float* p, f8 v) { std::memcpy(p, &v, sizeof v); }
 inline f8 splat(float s) { return f8{} + s; }
+/// Lanes of a field: eight consecutive elements from j (grid ranges), or the elements at the
+/// eight indices j (neighbour lists). Pair-loop bodies read fields through at() and so work
+/// with either walk.
+inline f8 at(const float* p, unsigned j) { return load(p + j); }
+inline f8 at(const float* p, i8 j) {
+#if defined(__AVX2__)
+  return _mm256_i32gather_ps(p, reinterpret_cast<__m256i>(j), 4);
+#else
+  f8 v;
+  for (int i = 0; i < kWidth; ++i) v[i] = p[j[i]];
+  return v;
+#endif
+}
 inline i8 lane_index() { return i8{0, 1, 2, 3, 4, 5, 6, 7}; }
 
 inline f8 sqrt(f8 x) {
@@ -57,6 +71,41 @@ inline bool any(i8 m) {
 #else
   for (int i = 0; i < kWidth; ++i) if (m[i]) return true;
   return false;
+#endif
+}
+/// Bit l set when lane l of the mask is.
+inline unsigned bits(i8 m) {
+#if defined(__AVX__)
+  return unsigned(_mm256_movemask_ps(reinterpret_cast<__m256>(m)));
+#else
+  unsigned b = 0;
+  for (int i = 0; i < kWidth; ++i) b |= (m[i] ? 1u : 0u) << i;
+  return b;
+#endif
+}
+/// Writes base + l for each lane l set in `bits`, in lane order, to out[0..popcount): eight
+/// slots are written (the ones past the count hold junk), so out needs eight of room.
+inline void store_packed(unsigned* out, unsigned base, unsigned bits) {
+#if defined(__AVX2__)
+  // Lane indices of each 8-bit mask, packed 4 bits each: built once, 256 entries.
+  static const auto table = [] {
+    struct T { unsigned long long v[256]; } t{};
+    for (unsigned m = 0; m < 256; ++m) {
+      unsigned long long packed = 0;
+      int k = 0;
+      for (unsigned l = 0; l < 8; ++l)
+        if (m & (1u << l)) packed |= (unsigned long long)l << (8 * k++);
+      t.v[m] = packed;
+    }
+    return t;
+  }();
+  const __m256i lanes = _mm256_cvtepu8_epi32(_mm_cvtsi64_si128((long long)table.v[bits & 255u]));
+  const __m256i v = _mm256_add_epi32(lanes, _mm256_set1_epi32(int(base)));
+  _mm256_storeu_si256(reinterpret_cast<__m256i*>(out), v);
+#else
+  int k = 0;
+  for (unsigned l = 0; l < 8; ++l)
+    if (bits & (1u << l)) out[k++] = base + l;
 #endif
 }
 /// Lane order is fixed, so the sum is the same on every run and thread count.

@@ -47,16 +47,16 @@ void Dfsph<D>::compute_factors() {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
         f8 sq{}, cnt{}, gf[D] = {}, gb[D] = {};
-        for_each_candidate_batch<D>(ctx_.fluid_grid, cells[i], fx, xi, support2,
-                                    [&](uint32_t, const f8* d, f8 r2, i8 m) {
+        this->for_each_fluid_batch(i, fx, xi, support2,
+                                    [&](auto, const f8* d, f8 r2, i8 m) {
                                       const f8 G = simd::select(m, K.grad_factor(r2), f8{});
                                       sq += G * G * r2;
                                       cnt += simd::select(m, f8{} + 1.0f, f8{});
                                       for (int k = 0; k < D; ++k) gf[k] += G * d[k];
                                     });
         for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
-                                    [&](uint32_t j, const f8* d, f8 r2, i8 m) {
-                                      const f8 G = simd::select(m, simd::load(psi + j) * K.grad_factor(r2), f8{});
+                                    [&](auto j, const f8* d, f8 r2, i8 m) {
+                                      const f8 G = simd::select(m, simd::at(psi, j) * K.grad_factor(r2), f8{});
                                       cnt += simd::select(m, f8{} + 1.0f, f8{});
                                       for (int k = 0; k < D; ++k) gb[k] += G * d[k];
                                     });
@@ -99,17 +99,17 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
         Real xi[D], vi[D];
         for (int k = 0; k < D; ++k) { xi[k] = fx[k][i]; vi[k] = fv[k][i]; }
         f8 rf{}, rb{};
-        for_each_candidate_batch<D>(ctx_.fluid_grid, cells[i], fx, xi, support2,
-                                    [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+        this->for_each_fluid_batch(i, fx, xi, support2,
+                                    [&](auto j, const f8* d, f8 r2, i8 m) {
                                       f8 vd = f8{};
-                                      for (int k = 0; k < D; ++k) vd += (vi[k] - simd::load(fv[k] + j)) * d[k];
+                                      for (int k = 0; k < D; ++k) vd += (vi[k] - simd::at(fv[k], j)) * d[k];
                                       rf += simd::select(m, vd * K.grad_factor(r2), f8{});
                                     });
         for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
-                                    [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+                                    [&](auto j, const f8* d, f8 r2, i8 m) {
                                       f8 vd = f8{};
-                                      for (int k = 0; k < D; ++k) vd += (vi[k] - simd::load(bv[k] + j)) * d[k];
-                                      rb += simd::select(m, simd::load(psi + j) * vd * K.grad_factor(r2), f8{});
+                                      for (int k = 0; k < D; ++k) vd += (vi[k] - simd::at(bv[k], j)) * d[k];
+                                      rb += simd::select(m, simd::at(psi, j) * vd * K.grad_factor(r2), f8{});
                                     });
         const double rate = double(mass) * simd::hsum(rf) + simd::hsum(rb);  // Dρᵢ/Dt
         // Density: r = ρ*ᵢ − ρ0 with ρ*ᵢ = ρᵢ + Δt Dρᵢ/Dt; divergence: r = Dρᵢ/Dt.

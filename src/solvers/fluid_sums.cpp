@@ -28,13 +28,13 @@ void FluidWorld<D>::compute_density() {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
         f8 wf{}, wb{};
-        for_each_candidate_batch<D>(ctx_.fluid_grid, cells[i], fx, xi, support2,
-                                    [&](uint32_t, const f8*, f8 r2, i8 m) {
+        this->for_each_fluid_batch(i, fx, xi, support2,
+                                    [&](auto, const f8*, f8 r2, i8 m) {
                                       wf += simd::select(m, K.value(r2), f8{});
                                     });
         for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
-                                    [&](uint32_t j, const f8*, f8 r2, i8 m) {
-                                      wb += simd::select(m, simd::load(psi + j) * K.value(r2), f8{});
+                                    [&](auto j, const f8*, f8 r2, i8 m) {
+                                      wb += simd::select(m, simd::at(psi, j) * K.value(r2), f8{});
                                     });
         rho[i] = mass * simd::hsum(wf) + simd::hsum(wb);
       }
@@ -95,37 +95,36 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
         const Real Pbm = mirror ? Pi : Real(0);
         f8 acc[D] = {};
         if constexpr (kPressure || kViscosity) {
-        for_each_candidate_batch<D>(
-            ctx_.fluid_grid, cells[i], fx, xi, support2, [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+        this->for_each_fluid_batch(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
               const f8 G = K.grad_factor(r2);  // ∇W = G · d
               f8 vij[D], vr = f8{};
               for (int k = 0; k < D; ++k) {
-                vij[k] = vi[k] - simd::load(fv[k] + j);
+                vij[k] = vi[k] - simd::at(fv[k], j);
                 vr += vij[k] * d[k];
               }
               f8 pij = f8{}, lam = f8{};
-              if constexpr (kPressure) pij = Pi + simd::load(P + j);
+              if constexpr (kPressure) pij = Pi + simd::at(P, j);
               if constexpr (kViscosity) {
-                const f8 rhoj = simd::load(rho + j);
+                const f8 rhoj = simd::at(rho, j);
                 const f8 inv = simd::rcp(r2 + eps);
                 pij += simd::select(vr < 0.0f, -ach * vr * inv * 2.0f * simd::rcp(rhoi + rhoj), f8{});
-                lam = simd::select(m, mass * nu * (iri + simd::load(inv_rho + j)) * G * r2 * inv, f8{});
+                lam = simd::select(m, mass * nu * (iri + simd::at(inv_rho, j)) * G * r2 * inv, f8{});
               }
               const f8 s = simd::select(m, -mass * pij * G, f8{});
               for (int k = 0; k < D; ++k) acc[k] += kViscosity ? s * d[k] + lam * vij[k] : s * d[k];
             });
         // Boundary neighbours mirror the fluid particle's pressure and density (ρ_b = ρᵢ).
         for_each_candidate_batch<D>(
-            ctx_.boundary_grid, cells[i], bx, xi, support2, [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+            ctx_.boundary_grid, cells[i], bx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
               const f8 G = K.grad_factor(r2);
               f8 vib[D], vr = f8{};
               for (int k = 0; k < D; ++k) {
-                vib[k] = vi[k] - simd::load(bv[k] + j);
+                vib[k] = vi[k] - simd::at(bv[k], j);
                 vr += vib[k] * d[k];
               }
-              const f8 w = simd::load(psi + j);
+              const f8 w = simd::at(psi, j);
               f8 pib = f8{}, lam = f8{};
-              if constexpr (kPressure) pib = Pi + (Pb ? simd::load(Pb + j) : f8{} + Pbm);
+              if constexpr (kPressure) pib = Pi + (Pb ? simd::at(Pb, j) : f8{} + Pbm);
               if constexpr (kViscosity) {
                 const f8 inv = simd::rcp(r2 + eps);
                 pib += simd::select(vr < 0.0f, -ach * vr * inv * iri, f8{});
@@ -177,13 +176,13 @@ void FluidWorld<D>::extrapolate_boundary_pressure() {
         for (int k = 0; k < D; ++k) xb[k] = bx[k][i];
         f8 sw{}, sp{}, sg{};
         for_each_candidate_batch<D>(ctx_.fluid_grid, cells[i], fx, xb, support2,
-                                    [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+                                    [&](auto j, const f8* d, f8 r2, i8 m) {
                                       const f8 w = simd::select(m, K.value(r2), f8{});
                                       f8 gd = f8{};
                                       for (int k = 0; k < D; ++k) gd += g[k] * d[k];
                                       sw += w;
-                                      sp += w * simd::load(p + j);
-                                      sg += w * simd::load(rho + j) * gd;
+                                      sp += w * simd::at(p, j);
+                                      sg += w * simd::at(rho, j) * gd;
                                     });
         const Real wsum = simd::hsum(sw);
         Real pb = wsum > 0 ? (simd::hsum(sp) + simd::hsum(sg)) / wsum : Real(0);

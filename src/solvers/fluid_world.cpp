@@ -200,6 +200,14 @@ void FluidWorld<D>::update_neighbours() {
   ScopedTimer timer(times_.neighbours_s);
   sort_fluid_by_cell();  // counting sort, arrays reordered by cell (Ihmsen et al. 2011)
   if (boundary_moving_) sort_boundary_by_cell();
+  if (keep_lists_) build_neighbour_lists();
+}
+
+template <int D>
+void FluidWorld<D>::build_neighbour_lists() {
+  const Real* xs[D];
+  for (int k = 0; k < D; ++k) xs[k] = fluid_.x[k].data();
+  ctx_.fluid_list.build(ctx_.fluid_grid, xs, fluid_.size(), Real(prm_.support * prm_.support), pool_);
 }
 
 template <int D>

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "core/grid.h"
+#include "core/neighbour_list.h"
+#include "core/pair_loop.h"
 #include "core/particles.h"
 #include "solvers/geometry.h"
 #include "solvers/simulation.h"
@@ -29,6 +31,7 @@ struct ResolvedParams {
 template <int D>
 struct StepContext {
   UniformGrid<D> fluid_grid, boundary_grid;
+  NeighbourList<D> fluid_list;     // fluid neighbours of the last sort, for iterative methods
   AlignedArray<Real> p_over_rho2;  // pᵢ/ρᵢ² (or a method's equivalent), symmetric pressure term
   AlignedArray<Real> inv_rho;      // 1/ρᵢ, Morris viscosity
   AlignedArray<Real> boundary_p_over_rho2;  // p_b/ρ0² extrapolated from the fluid (Adami 2012)
@@ -36,7 +39,7 @@ struct StepContext {
   typename FluidParticles<D>::Spare spare;  // double buffers for the fluid reorder
   std::size_t bytes() const {
     return fluid_grid.bytes() + boundary_grid.bytes() + p_over_rho2.bytes() + inv_rho.bytes() +
-           boundary_p_over_rho2.bytes() + tmp.bytes() + spare.bytes();
+           boundary_p_over_rho2.bytes() + tmp.bytes() + spare.bytes() + fluid_list.bytes();
   }
 };
 
@@ -131,6 +134,22 @@ class FluidWorld : public Simulation {
     put_back_escaped();
   }
   void update_neighbours();              // sort fluid (and moving boundary) by cell
+  /// Methods that sum over the same neighbourhood many times per step ask for neighbour lists:
+  /// update_neighbours() then also lists each particle's fluid neighbours, and every shared
+  /// and method pair sum walks the list instead of the grid until the next update.
+  /// Called from a method's constructor; lists the sampled fluid at once.
+  void keep_neighbour_lists() { keep_lists_ = true; build_neighbour_lists(); }
+  /// The fluid pair walk every sum uses: particle i's list when one is current, else its
+  /// grid cells. fn(j, d, r2, mask) reads neighbour fields with simd::at(array, j).
+  template <class Fn>
+  [[gnu::always_inline]] void for_each_fluid_batch(std::size_t i, const Real* const xs[D],
+                                                   const Real xi[D], Real support2, Fn&& fn) const {
+    if (lists_current())
+      for_each_listed_batch<D>(ctx_.fluid_list, i, xs, xi, support2, fn);
+    else
+      for_each_candidate_batch<D>(ctx_.fluid_grid, ctx_.fluid_grid.sorted_cells()[i], xs, xi,
+                                  support2, fn);
+  }
   void compute_density();                // ρᵢ = Σⱼ mⱼ Wᵢⱼ + Σ_b Ψ_b W_ib (Akinci 2012, eq. 6)
   void measure_density_error();          // max and mean compression (ρ-ρ0)/ρ0 ≥ 0
   void compute_inverse_density();        // ctx_.inv_rho for the viscosity terms
@@ -182,7 +201,13 @@ class FluidWorld : public Simulation {
   template <bool kPressure, bool kViscosity, bool kExternal>
   void accelerations_impl(const ForceTerms& terms);
 
+  bool lists_current() const {
+    return ctx_.fluid_list.valid() && ctx_.fluid_list.size() == fluid_.size();
+  }
+  void build_neighbour_lists();
+
   std::vector<MethodField> method_fields_;
+  bool keep_lists_ = false;
 };
 
 }  // namespace rtsph

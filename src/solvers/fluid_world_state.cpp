@@ -133,6 +133,8 @@ void FluidWorld<D>::state_loaded() {
   // ranges without moving a particle; DFSPH's first pair loop of the next step reads them.
   for (int k = 0; k < D; ++k) xs[k] = fluid_.x[k].data();
   ctx_.fluid_grid.build(xs, fluid_.size(), pool_);
+  // The lists follow from the same positions and order, so they match the straight run's too.
+  if (keep_lists_) build_neighbour_lists();
 }
 
 template <int D>

@@ -13,6 +13,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "core/pair_loop.h"
 #include "core/timer.h"
@@ -24,6 +25,8 @@ using simd::i8;
 
 template <int D>
 Pbf<D>::Pbf(const SimSpec& spec, int threads) : W(spec, threads) {
+  // Several sums per step over one neighbourhood: walk lists, not the grid.
+  this->keep_neighbour_lists();
   lattice_gradient_norm_ = this->lattice_gradient_sum() / (prm_.rho0 * prm_.rho0);
   this->compute_density();
   this->measure_density_error();
@@ -108,7 +111,7 @@ void Pbf<D>::solve_density_constraint(double dt) {
   });
 }
 
-// ρᵢ, Cᵢ and λᵢ in one pair loop (eqs. 2, 1, 11).
+// ρᵢ, Cᵢ and λᵢ in one pair loop (eqs. 2, 1, 11), caching what the Δx pass needs.
 template <int D>
 void Pbf<D>::compute_lambda() {
   const std::size_t n = fluid_.size();
@@ -120,25 +123,45 @@ void Pbf<D>::compute_lambda() {
   [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
   [[maybe_unused]] const Real* const psi = pa.psi;
   const uint32_t* const cells = pa.cells;
+  const NeighbourList<D>& list = ctx_.fluid_list;  // current: update_neighbours() just ran
+  const std::size_t stride = list.stride();
+  for (int k = 0; k < D; ++k) {
+    pair_grad_[k].resize(n * stride);
+    wall_grad_[k].resize(n);
+  }
+  pair_scorr_.resize(n * stride);
+  const int n_corr = spec_.pbf_scorr_n;
+  const double dq = spec_.pbf_scorr_dq * prm_.support;
   Real* rho = fluid_.rho.data();
   Real* lambda = lambda_.data();
   Real* lambda_sum = lambda_sum_.data();
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+    const Real inv_w_dq = Real(1.0 / double(K.value(float(dq * dq))));
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
         f8 wf{}, wb{}, sq{}, gf[D] = {}, gb[D] = {};
-        for_each_candidate_batch<D>(ctx_.fluid_grid, cells[i], fx, xi, support2,
-                                    [&](uint32_t, const f8* d, f8 r2, i8 m) {
-                                      const f8 G = simd::select(m, K.grad_factor(r2), f8{});
-                                      wf += simd::select(m, K.value(r2), f8{});
-                                      sq += G * G * r2;
-                                      for (int k = 0; k < D; ++k) gf[k] += G * d[k];
-                                    });
+        std::size_t slot = i * stride;
+        for_each_listed_batch<D>(list, i, fx, xi, support2, [&](auto, const f8* d, f8 r2, i8 m) {
+          const f8 G = simd::select(m, K.grad_factor(r2), f8{});
+          const f8 w = simd::select(m, K.value(r2), f8{});
+          wf += w;
+          sq += G * G * r2;
+          for (int k = 0; k < D; ++k) {
+            const f8 g = G * d[k];
+            gf[k] += g;
+            simd::store(pair_grad_[k].data() + slot, g);
+          }
+          const f8 q = w * inv_w_dq;
+          f8 qn = q;
+          for (int p = 1; p < n_corr; ++p) qn *= q;
+          simd::store(pair_scorr_.data() + slot, qn);
+          slot += simd::kWidth;
+        });
         for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
-                                    [&](uint32_t j, const f8* d, f8 r2, i8 m) {
-                                      const f8 w = simd::select(m, simd::load(psi + j), f8{});
+                                    [&](auto j, const f8* d, f8 r2, i8 m) {
+                                      const f8 w = simd::select(m, simd::at(psi, j), f8{});
                                       wb += w * K.value(r2);
                                       const f8 G = w * K.grad_factor(r2);
                                       for (int k = 0; k < D; ++k) gb[k] += G * d[k];
@@ -147,6 +170,7 @@ void Pbf<D>::compute_lambda() {
         double dot = 0;
         for (int k = 0; k < D; ++k) {
           const double f = double(mass) * simd::hsum(gf[k]), w = simd::hsum(gb[k]);
+          wall_grad_[k][i] = Real(w);
           dot += (f + 2.0 * w) * (f + w);
         }
         const double grad2 = (dot + double(mass) * mass * simd::hsum(sq)) * inv_rho02;
@@ -162,46 +186,33 @@ void Pbf<D>::compute_lambda() {
 }
 
 // Δxᵢ (eq. 14) with the artificial pressure s_corr = −k (W(r)/W(Δq))ⁿ (eq. 13), then x += Δx.
+// The gradients and weights are the λ pass's: the positions have not moved since.
 template <int D>
 void Pbf<D>::apply_position_correction() {
   const std::size_t n = fluid_.size();
-  const Real support2 = Real(prm_.support * prm_.support);
   const Real mass_over_rho0 = Real(prm_.mass / prm_.rho0), inv_rho0 = Real(1.0 / prm_.rho0);
   // s_corr in units of a unit constraint's λ inside the rest lattice, −1/Σ|∇C|².
   const Real k_corr = Real(spec_.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30));
-  const int n_corr = spec_.pbf_scorr_n;
-  const double dq = spec_.pbf_scorr_dq * prm_.support;
-  const PairArrays<D> pa = this->pair_arrays();
-  [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
-  [[maybe_unused]] const Real* const psi = pa.psi;
-  const uint32_t* const cells = pa.cells;
+  const NeighbourList<D>& list = ctx_.fluid_list;
+  const std::size_t stride = list.stride();
   const Real* lambda = lambda_.data();
-  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
-    const Real inv_w_dq = Real(1.0 / double(K.value(float(dq * dq))));
-    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) {
-        Real xi[D];
-        for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
-        const Real li = lambda[i];
-        f8 acc[D] = {}, accb[D] = {};
-        for_each_candidate_batch<D>(ctx_.fluid_grid, cells[i], fx, xi, support2,
-                                    [&](uint32_t j, const f8* d, f8 r2, i8 m) {
-                                      const f8 q = K.value(r2) * inv_w_dq;
-                                      f8 qn = q;
-                                      for (int p = 1; p < n_corr; ++p) qn *= q;
-                                      const f8 s = li + simd::load(lambda + j) - k_corr * qn;
-                                      const f8 c = simd::select(m, s * K.grad_factor(r2), f8{});
-                                      for (int k = 0; k < D; ++k) acc[k] += c * d[k];
-                                    });
-        for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
-                                    [&](uint32_t j, const f8* d, f8 r2, i8 m) {
-                                      const f8 c = simd::select(m, simd::load(psi + j) * K.grad_factor(r2), f8{});
-                                      for (int k = 0; k < D; ++k) accb[k] += c * d[k];
-                                    });
-        for (int k = 0; k < D; ++k)
-          delta_[k][i] = mass_over_rho0 * simd::hsum(acc[k]) + 2.0f * li * inv_rho0 * simd::hsum(accb[k]);
+  pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const Real li = lambda[i];
+      const uint32_t* idx = list.begin(i);
+      const int count = int(list.count(i));
+      f8 acc[D] = {};
+      for (int s = 0; s < count; s += simd::kWidth) {
+        const std::size_t slot = i * stride + std::size_t(s);
+        i8 j;
+        std::memcpy(&j, idx + s, sizeof j);
+        // Masked lanes hold zero gradients, so they add nothing.
+        const f8 c = li + simd::at(lambda, j) - k_corr * simd::load(pair_scorr_.data() + slot);
+        for (int k = 0; k < D; ++k) acc[k] += c * simd::load(pair_grad_[k].data() + slot);
       }
-    });
+      for (int k = 0; k < D; ++k)
+        delta_[k][i] = mass_over_rho0 * simd::hsum(acc[k]) + 2.0f * li * inv_rho0 * wall_grad_[k][i];
+    }
   });
   // Jacobi: every Δx comes from the same positions, then all move at once.
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {

@@ -29,6 +29,11 @@ class Pbf final : public FluidWorld<D> {
   AlignedArray<Real> lambda_, lambda_sum_;
   std::array<AlignedArray<Real>, D> predicted_, delta_;
   AlignedArray<Real> omega_[D == 2 ? 1 : 3];
+  // What the λ pass leaves for the Δx pass of the same iteration (same positions): per listed
+  // pair ∇ᵢWᵢⱼ and the s_corr weight (W/W(Δq))ⁿ, zero on masked lanes; per particle the wall
+  // gradient Σ_b Ψ_b∇W_ib. The Δx pass then evaluates no kernel and walks no wall.
+  std::array<AlignedArray<Real>, D> pair_grad_, wall_grad_;
+  AlignedArray<Real> pair_scorr_;
   int iterations_ = 0;
 };
 

@@ -40,11 +40,10 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
         Real xi[D], vi[D];
         for (int k = 0; k < D; ++k) { xi[k] = fx[k][i]; vi[k] = fv[k][i]; }
         f8 dv[D] = {}, dvb[D] = {}, om[kOmega] = {};
-        for_each_candidate_batch<D>(
-            ctx_.fluid_grid, cells[i], fx, xi, support2, [&](uint32_t j, const f8* d, f8 r2, i8 m) {
-              const f8 vol = simd::select(m, mass * simd::rcp(simd::load(rho + j)), f8{});
+        this->for_each_fluid_batch(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
+              const f8 vol = simd::select(m, mass * simd::rcp(simd::at(rho, j)), f8{});
               f8 vji[D];
-              for (int k = 0; k < D; ++k) vji[k] = simd::load(fv[k] + j) - vi[k];
+              for (int k = 0; k < D; ++k) vji[k] = simd::at(fv[k], j) - vi[k];
               const f8 w = vol * K.value(r2);
               for (int k = 0; k < D; ++k) dv[k] += w * vji[k];
               if (vort) {
@@ -59,9 +58,9 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
               }
             });
         for_each_candidate_batch<D>(
-            ctx_.boundary_grid, cells[i], bx, xi, support2, [&](uint32_t j, const f8*, f8 r2, i8 m) {
-              const f8 w = simd::select(m, simd::load(psi + j) * K.value(r2), f8{});
-              for (int k = 0; k < D; ++k) dvb[k] += w * (simd::load(bv[k] + j) - vi[k]);
+            ctx_.boundary_grid, cells[i], bx, xi, support2, [&](auto j, const f8*, f8 r2, i8 m) {
+              const f8 w = simd::select(m, simd::at(psi, j) * K.value(r2), f8{});
+              for (int k = 0; k < D; ++k) dvb[k] += w * (simd::at(bv[k], j) - vi[k]);
             });
         for (int k = 0; k < D; ++k)
           delta_[k][i] = cx * (simd::hsum(dv[k]) + inv_rho0 * simd::hsum(dvb[k]));
@@ -80,14 +79,13 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
         for (int k = 0; k < kOmega; ++k) { wi[k] = omega_[k][i]; wi2 += wi[k] * wi[k]; }
         const Real wabs = std::sqrt(wi2);
         f8 eta[D] = {};
-        for_each_candidate_batch<D>(
-            ctx_.fluid_grid, cells[i], fx, xi, support2, [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+        this->for_each_fluid_batch(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
               f8 wj2 = f8{};
               for (int k = 0; k < kOmega; ++k) {
-                const f8 w = simd::load(omega_[k].data() + j);
+                const f8 w = simd::at(omega_[k].data(), j);
                 wj2 += w * w;
               }
-              const f8 vol = mass * simd::rcp(simd::load(rho + j));
+              const f8 vol = mass * simd::rcp(simd::at(rho, j));
               const f8 G = simd::select(m, vol * (simd::sqrt(wj2) - wabs) * K.grad_factor(r2), f8{});
               for (int k = 0; k < D; ++k) eta[k] += G * d[k];
             });

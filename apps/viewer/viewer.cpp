@@ -31,6 +31,7 @@
 #include "render/image_io.h"
 #include "render/renderer.h"
 #include "scene/params.h"
+#include "scene/realtime_profile.h"
 #include "scene/scene.h"
 
 namespace rtsph::app {
@@ -49,6 +50,7 @@ struct ViewOptions {
   bool paused = false;
   long max_frames = 0;
   bool report = false;
+  bool accurate = false;   // run scenes as written, not their real-time profile
   float render_scale = 0;  // 0: adapt to keep ≥ 30 fps; else fixed fraction of the window
 };
 
@@ -106,6 +108,7 @@ class Viewer {
   enum class WindowResult { Ok, InitFailed, WindowFailed };
   WindowResult create_window();
   void load(const SimSpec& spec, bool reframe);
+  SimSpec for_viewer(const SimSpec& scene, const std::vector<std::string>& sets);
   void frame();
   void draw_ui();
   void draw_parameters();
@@ -133,6 +136,13 @@ class Viewer {
   std::unique_ptr<render::Renderer> renderer_;
   std::unique_ptr<SimRunner> runner_;
   SimSpec spec_, edit_spec_;
+  // The scene as loaded (with its --set overrides) and what the viewer made of it: its
+  // real-time profile (viewer.realtime) unless the user asked for the scene as written.
+  SimSpec scene_spec_;
+  std::vector<std::string> scene_sets_;
+  bool realtime_ = true;
+  int threads_ = 1;
+  std::string profile_text_;
   bool edit_pending_ = false;
   SimFrame frame_;
   std::uint64_t generation_ = ~0ull;
@@ -203,6 +213,22 @@ Viewer::WindowResult Viewer::create_window() {
   parse_size(opt_.size, &w, &h);
   win_ = glfwCreateWindow(w, h, "rtsph", nullptr, nullptr);
   return win_ ? WindowResult::Ok : WindowResult::WindowFailed;
+}
+
+SimSpec Viewer::for_viewer(const SimSpec& scene, const std::vector<std::string>& sets) {
+  scene_spec_ = scene;
+  scene_sets_ = sets;
+  for (const auto& a : sets) apply_override(scene_spec_, a);
+  if (!realtime_) {
+    profile_text_ = scene_spec_.viewer_realtime ? "as written (real-time profile off)" : "as written";
+    return scene_spec_;
+  }
+  const RealtimeProfile p = realtime_profile(scene_spec_, threads_);
+  profile_text_ = p.describe();
+  SimSpec out = p.spec;
+  // The user's own overrides win over the profile's choices.
+  for (const auto& a : sets) apply_override(out, a);
+  return out;
 }
 
 void Viewer::load(const SimSpec& spec, bool reframe) {
@@ -672,7 +698,7 @@ void Viewer::draw_ui() {
       for (const auto& [name, desc] : builtins_) {
         if (ImGui::Selectable(name.c_str(), name == spec_.name)) {
           try {
-            SimSpec s = load_scene(name);
+            SimSpec s = for_viewer(load_scene(name), {});
             runner_->reset(s);
             load(s, true);
           } catch (const std::exception& e) {
@@ -683,11 +709,26 @@ void Viewer::draw_ui() {
       }
       ImGui::EndCombo();
     }
+    if (ImGui::Checkbox("real-time profile", &realtime_)) {
+      try {
+        SimSpec s = for_viewer(scene_spec_, scene_sets_);
+        runner_->reset(s);
+        load(s, false);
+        status(profile_text_);
+      } catch (const std::exception& e) {
+        status(e.what(), true);
+      }
+    }
+    if (ImGui::IsItemHovered())
+      ImGui::SetTooltip("Scenes marked viewer.realtime run with PBF at a spacing this machine\n"
+                        "steps in real time. Off: the scene as written (its method and\n"
+                        "resolution, e.g. WCSPH or DFSPH for accuracy). Resets the scene.");
+    ImGui::TextDisabled("%s", profile_text_.c_str());
     ImGui::InputText("file", path_buf_, sizeof path_buf_);
     ImGui::SameLine();
     if (ImGui::Button("Load")) {
       try {
-        SimSpec s = load_scene(path_buf_);
+        SimSpec s = for_viewer(load_scene(path_buf_), {});
         runner_->reset(s);
         load(s, true);
       } catch (const std::exception& e) {
@@ -878,8 +919,11 @@ void Viewer::frame() {
 }
 
 int Viewer::run() {
-  SimSpec spec = load_scene(opt_.scene);
-  for (const auto& s : opt_.sets) apply_override(spec, s);
+  const int hw = int(std::thread::hardware_concurrency());
+  threads_ = opt_.threads >= 0 ? opt_.threads : std::max(1, hw - 1);
+  if (threads_ == 0) threads_ = std::max(1, hw);
+  realtime_ = !opt_.accurate;
+  SimSpec spec = for_viewer(load_scene(opt_.scene), opt_.sets);
   if (!opt_.script.empty()) script_ = load_script(opt_.script);
   if (!render::parse_color_mode(opt_.color, &settings_.color))
     throw std::invalid_argument(fmt::format("--color {}: expected solid, speed, velocity, pressure or density", opt_.color));
@@ -930,9 +974,7 @@ int Viewer::run() {
   try {
     renderer_ = std::make_unique<render::Renderer>();
     builtins_ = builtin_scenes();
-    const int hw = int(std::thread::hardware_concurrency());
-    const int threads = opt_.threads >= 0 ? opt_.threads : std::max(1, hw - 1);
-    runner_ = std::make_unique<SimRunner>(spec, threads, opt_.paused);
+    runner_ = std::make_unique<SimRunner>(spec, opt_.threads >= 0 ? opt_.threads : threads_, opt_.paused);
     load(spec, true);
     runner_->fetch(&frame_);
     generation_ = frame_.generation;
@@ -942,9 +984,11 @@ int Viewer::run() {
       renderer_->upload(frame_.particles.fluid(), &b);
       renderer_->upload_solids(frame_.obstacle_solids);
     }
-    std::fprintf(stderr, "rtsph view: %s (%dD), %zu fluid + %zu boundary particles, %s\n", spec.name.c_str(),
-                 spec.dimension, frame_.stats.fluid_particles, frame_.stats.boundary_particles,
-                 render::gl_description().c_str());
+    std::fprintf(stderr, "rtsph view: %s (%dD, %s), %zu fluid + %zu boundary particles, %s\n",
+                 spec.name.c_str(), spec.dimension, spec.method.c_str(), frame_.stats.fluid_particles,
+                 frame_.stats.boundary_particles, render::gl_description().c_str());
+    std::fprintf(stderr, "rtsph view: %s%s\n", profile_text_.c_str(),
+                 realtime_ && spec.viewer_realtime ? "; --accurate runs the scene as written" : "");
     run_t0_ = fps_t0_ = now_s();
     while (!quit_ && !glfwWindowShouldClose(win_)) {
       glfwPollEvents();
@@ -956,9 +1000,9 @@ int Viewer::run() {
       SimFrame last;
       runner_->fetch(&last);
       const SimFrame& f = last.serial > frame_.serial ? last : frame_;
-      std::printf("viewer: %s %zu fluid particles: %ld frames in %.2f s = %.2f fps (drawn at %.0f%%); "
+      std::printf("viewer: %s %s %zu fluid particles: %ld frames in %.2f s = %.2f fps (drawn at %.0f%%); "
                   "sim %.1f ms/frame, %.2f ms/step, sim time %.3f s, real-time factor %.4f\n",
-                  spec_.name.c_str(), f.stats.fluid_particles, frames_total_, wall, frames_total_ / wall,
+                  spec_.name.c_str(), spec_.method.c_str(), f.stats.fluid_particles, frames_total_, wall, frames_total_ / wall,
                   100 * scale_, 1000 * f.busy_s / std::max<long>(frames_total_, 1), f.step_ms,
                   f.stats.time_s, f.stats.time_s / wall);
     }
@@ -1024,6 +1068,7 @@ void add_view_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--script", o->script, "Scripted input (see apps/viewer/script.h): for tests and demos");
   cmd->add_option("--frames", o->max_frames, "Quit after this many frames")->check(CLI::Range(1L, 1000000000L));
   cmd->add_flag("--report", o->report, "Print fps and simulation cost on exit");
+  cmd->add_flag("--accurate", o->accurate, "Run the scene as written, not its real-time profile (scenes with viewer.realtime, e.g. the dam breaks, otherwise run PBF at a spacing this machine steps in real time)");
   cmd->add_option("--render-scale", o->render_scale, "Draw the scene at this fraction of the window resolution (default: adaptive, to keep >= 30 fps)")->check(CLI::Range(0.1, 1.0));
   cmd->callback([o, &exit_code] {
     exit_code = guarded([&] {

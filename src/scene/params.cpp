@@ -207,6 +207,13 @@ const std::vector<ParamInfo>& parameter_table() {
       field<&SimSpec::end_time>({.key = "end_time", .unit = "s", .min = 0, .max = kTime,
                                  .min_exclusive = true, .default_value = 2,
                                  .help = "Simulated time at which `rtsph run` stops."}),
+      field<&SimSpec::viewer_realtime>({.key = "viewer.realtime", .default_value = 0,
+                                        .help = "`rtsph view` runs this scene in real time: "
+                                                "method pbf, with fluid.spacing coarsened until "
+                                                "the fluid fits what the viewer's solver threads "
+                                                "step in real time. `rtsph view --accurate` (or "
+                                                "the panel's checkbox) runs it as written. "
+                                                "Other commands ignore it."}),
   };
   return table;
 }

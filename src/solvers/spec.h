@@ -96,6 +96,7 @@ struct SimSpec {
   std::vector<ObstacleSpec> obstacles;
   std::vector<EmitterSpec> emitters;
   double end_time = 2.0;           // s
+  bool viewer_realtime = false;    // the viewer runs its real-time profile (scene/realtime_profile.h)
 };
 
 /// Copies the parameters that are safe to change while a simulation runs, because the solver

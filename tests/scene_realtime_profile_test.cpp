@@ -1,0 +1,68 @@
+// The viewer's real-time profile: scenes marked viewer.realtime run PBF at a spacing whose
+// starting fluid fits the per-thread budget; unmarked scenes (validation) run as written.
+#include <gtest/gtest.h>
+
+#include "scene/realtime_profile.h"
+#include "scene/scene.h"
+#include "solvers/geometry.h"
+
+namespace rtsph {
+namespace {
+
+TEST(RealtimeProfile, MarkedSceneRunsPbfWithinTheBudget) {
+  const SimSpec scene = load_scene("dam_break_3d");
+  ASSERT_TRUE(scene.viewer_realtime);
+  ASSERT_EQ(scene.method, "wcsph");
+  const double written = count_particles(scene).fluid;
+  for (int threads : {1, 2, 8}) {
+    const RealtimeProfile p = realtime_profile(scene, threads);
+    EXPECT_TRUE(p.applied);
+    EXPECT_EQ(p.spec.method, "pbf");
+    EXPECT_DOUBLE_EQ(p.budget, realtime_particles_per_thread(3) * threads);
+    const double n = count_particles(p.spec).fluid;
+    EXPECT_EQ(n, p.fluid_particles);
+    EXPECT_LE(n, p.budget);
+    // Coarsened only as far as needed: within ~25% of the budget (lattice rounding), and
+    // never finer than the scene.
+    EXPECT_GT(n, 0.75 * std::min(p.budget, written)) << threads << " threads";
+    EXPECT_GE(p.spec.spacing, scene.spacing);
+    // Everything but the method and the spacing is the scene's.
+    SimSpec back = p.spec;
+    back.method = scene.method;
+    back.spacing = scene.spacing;
+    EXPECT_EQ(scene_to_json(back), scene_to_json(scene));
+  }
+}
+
+TEST(RealtimeProfile, MoreThreadsGiveAFinerSpacing) {
+  const SimSpec scene = load_scene("dam_break_2d");
+  EXPECT_GT(realtime_profile(scene, 1).spec.spacing, realtime_profile(scene, 4).spec.spacing);
+}
+
+TEST(RealtimeProfile, SmallSceneKeepsItsSpacing) {
+  SimSpec scene = load_scene("dam_break_3d");
+  apply_override(scene, "fluid.spacing=0.1");
+  const RealtimeProfile p = realtime_profile(scene, 1);
+  EXPECT_TRUE(p.applied);
+  EXPECT_EQ(p.spec.method, "pbf");
+  EXPECT_EQ(p.spec.spacing, 0.1);
+}
+
+TEST(RealtimeProfile, UnmarkedSceneRunsAsWritten) {
+  const SimSpec scene = load_scene("hydrostatic_2d");  // a validation scene
+  EXPECT_FALSE(scene.viewer_realtime);
+  const RealtimeProfile p = realtime_profile(scene, 1);
+  EXPECT_FALSE(p.applied);
+  EXPECT_EQ(scene_to_json(p.spec), scene_to_json(scene));
+  EXPECT_EQ(p.describe(), "as written");
+}
+
+TEST(RealtimeProfile, KeyReadsFromJsonAndSet) {
+  SimSpec s = load_scene("hydrostatic_2d");
+  apply_override(s, "viewer.realtime=true");
+  EXPECT_TRUE(s.viewer_realtime);
+  EXPECT_TRUE(parse_scene(scene_to_json(s), "round trip").viewer_realtime);
+}
+
+}  // namespace
+}  // namespace rtsph

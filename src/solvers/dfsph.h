@@ -14,13 +14,14 @@ class Dfsph final : public FluidWorld<D> {
   Dfsph(const SimSpec& spec, int threads);
   void step() override;
   std::string solver_failure() const override { return failure_; }
+  void state_loaded() override;
 
  private:
   using W = FluidWorld<D>;
   using W::spec_, W::pool_, W::prm_, W::fluid_, W::boundary_, W::ctx_, W::times_;
 
   double choose_time_step() const;
-  void compute_factors();                  // αᵢ and neighbour counts (2017, eq. 8)
+  void compute_factors();                  // αᵢ and neighbour counts (2017, eq. 8); caches
   double correct_density_error(double dt);       // Algorithm 3
   double correct_divergence_error(double dt);    // Algorithm 2
   /// Warm start from `total` (last step's pressure), then projected Jacobi sweeps until the
@@ -38,6 +39,12 @@ class Dfsph final : public FluidWorld<D> {
   AlignedArray<Real> neighbours_;    // fluid + boundary neighbours, for the divergence clamp
   AlignedArray<Real> pressure_;      // Pᵢ = κᵢ/ρᵢ of the current sweep (m^(d+2)/(kg s²))
   AlignedArray<Real> warm_density_, warm_divergence_;  // Σκ/ρ of the last step, times Δt², Δt
+  // The positions do not move between compute_factors() and the end of the next density solve
+  // (both solves), so the sweeps read the kernel gradients from here instead of evaluating
+  // them again: ∇Wᵢⱼ per listed pair (zero on masked lanes), and per particle the wall sums
+  // Σ_b Ψ_b∇W_ib and Σ_b Ψ_b v_b·∇W_ib. Rebuilt by compute_factors(); never saved.
+  std::array<AlignedArray<Real>, D> pair_grad_, wall_grad_;
+  AlignedArray<Real> wall_rate_;
   int density_iterations_ = 0, divergence_iterations_ = 0;
   double density_iteration_sum_ = 0, divergence_iteration_sum_ = 0;
   std::string failure_;

@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 
 #include "core/pair_loop.h"
 #include "core/timer.h"
@@ -39,6 +40,13 @@ void Dfsph<D>::compute_factors() {
   [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
   [[maybe_unused]] const Real* const psi = pa.psi;
   const uint32_t* const cells = pa.cells;
+  const NeighbourList<D>& list = ctx_.fluid_list;  // current: every sort lists
+  const std::size_t stride = list.stride();
+  for (int k = 0; k < D; ++k) {
+    pair_grad_[k].resize(n * stride);
+    wall_grad_[k].resize(n);
+  }
+  wall_rate_.resize(n);
   // Below this the particle has (almost) no neighbours: no pressure can act on it.
   const double tiny = 1e-6 * this->lattice_gradient_sum();
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
@@ -46,31 +54,49 @@ void Dfsph<D>::compute_factors() {
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
-        f8 sq{}, cnt{}, gf[D] = {}, gb[D] = {};
-        this->for_each_fluid_batch(i, fx, xi, support2,
-                                    [&](auto, const f8* d, f8 r2, i8 m) {
-                                      const f8 G = simd::select(m, K.grad_factor(r2), f8{});
-                                      sq += G * G * r2;
-                                      cnt += simd::select(m, f8{} + 1.0f, f8{});
-                                      for (int k = 0; k < D; ++k) gf[k] += G * d[k];
-                                    });
+        f8 sq{}, cnt{}, rate{}, gf[D] = {}, gb[D] = {};
+        std::size_t slot = i * stride;
+        for_each_listed_batch<D>(list, i, fx, xi, support2, [&](auto, const f8* d, f8 r2, i8 m) {
+          const f8 G = simd::select(m, K.grad_factor(r2), f8{});
+          sq += G * G * r2;
+          cnt += simd::select(m, f8{} + 1.0f, f8{});
+          for (int k = 0; k < D; ++k) {
+            const f8 g = G * d[k];
+            gf[k] += g;
+            simd::store(pair_grad_[k].data() + slot, g);
+          }
+          slot += simd::kWidth;
+        });
         for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                     [&](auto j, const f8* d, f8 r2, i8 m) {
                                       const f8 G = simd::select(m, simd::at(psi, j) * K.grad_factor(r2), f8{});
                                       cnt += simd::select(m, f8{} + 1.0f, f8{});
-                                      for (int k = 0; k < D; ++k) gb[k] += G * d[k];
+                                      for (int k = 0; k < D; ++k) {
+                                        gb[k] += G * d[k];
+                                        rate += G * d[k] * simd::at(bv[k], j);
+                                      }
                                     });
         double dot = 0;
         for (int k = 0; k < D; ++k) {
           const double f = double(mass) * simd::hsum(gf[k]), w = simd::hsum(gb[k]);
+          wall_grad_[k][i] = Real(w);
           dot += (f + 2.0 * w) * (f + w);
         }
+        wall_rate_[i] = simd::hsum(rate);
         const double denom = dot + double(mass) * mass * simd::hsum(sq);
         factor_[i] = denom > tiny ? Real(1.0 / denom) : Real(0);
         neighbours_[i] = simd::hsum(cnt);
       }
     });
   });
+}
+
+// A resumed run continues from the saved positions, which the last step listed and cached:
+// rebuild the caches (and the factors, to the same bits) before the next density solve.
+template <int D>
+void Dfsph<D>::state_loaded() {
+  W::state_loaded();
+  compute_factors();
 }
 
 // Computes Dρ/Dt with the current velocities and the residual r; the sweep's change of
@@ -81,59 +107,80 @@ void Dfsph<D>::compute_factors() {
 template <int D>
 double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& total) {
   const std::size_t n = fluid_.size();
-  const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
+  const Real mass = Real(prm_.mass);
   const PairArrays<D> pa = this->pair_arrays();
-  [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
-  [[maybe_unused]] const Real* const psi = pa.psi;
-  const uint32_t* const cells = pa.cells;
+  const auto& fv = pa.fv;
+  const NeighbourList<D>& list = ctx_.fluid_list;
+  const std::size_t stride = list.stride();
   const double rho0 = prm_.rho0, inv_rho0 = 1.0 / rho0;
   const bool clamp = spec_.clamp_negative_pressure;
   const double to_p = density ? 1.0 / (dt * dt) : 1.0 / dt;
   // Particles with a thin neighbourhood (free surface, spray) get no divergence correction:
   // their missing neighbours read as expansion or compression that is not there (2017, §4.2).
   const Real min_neighbours = D == 3 ? 20.0f : 7.0f;
-  return with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
-    return pool_.parallel_reduce(n, 0.0, [&](std::size_t b, std::size_t e) {
-      double sum = 0;
-      for (std::size_t i = b; i < e; ++i) {
-        Real xi[D], vi[D];
-        for (int k = 0; k < D; ++k) { xi[k] = fx[k][i]; vi[k] = fv[k][i]; }
-        f8 rf{}, rb{};
-        this->for_each_fluid_batch(i, fx, xi, support2,
-                                    [&](auto j, const f8* d, f8 r2, i8 m) {
-                                      f8 vd = f8{};
-                                      for (int k = 0; k < D; ++k) vd += (vi[k] - simd::at(fv[k], j)) * d[k];
-                                      rf += simd::select(m, vd * K.grad_factor(r2), f8{});
-                                    });
-        for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
-                                    [&](auto j, const f8* d, f8 r2, i8 m) {
-                                      f8 vd = f8{};
-                                      for (int k = 0; k < D; ++k) vd += (vi[k] - simd::at(bv[k], j)) * d[k];
-                                      rb += simd::select(m, simd::at(psi, j) * vd * K.grad_factor(r2), f8{});
-                                    });
-        const double rate = double(mass) * simd::hsum(rf) + simd::hsum(rb);  // Dρᵢ/Dt
-        // Density: r = ρ*ᵢ − ρ0 with ρ*ᵢ = ρᵢ + Δt Dρᵢ/Dt; divergence: r = Dρᵢ/Dt.
-        double r = density ? fluid_.rho[i] + dt * rate - rho0 : rate;
-        const bool thin = !density && neighbours_[i] < min_neighbours;
-        double p = thin ? 0.0 : total[i] + kRelax * r * factor_[i] * to_p;
-        if (clamp) p = std::max(p, 0.0);
-        pressure_[i] = Real(p - total[i]);
-        // Where pressure acts, expansion is an error too (it is pressure applied in excess,
-        // e.g. by the warm start); where none acts, only compression is.
-        if (thin) r = 0.0;
-        else if (clamp) r = p > 0 ? std::abs(r) : std::max(r, 0.0);
-        else r = std::abs(r);
-        sum += density ? r * inv_rho0 : r * dt * inv_rho0;
+  return pool_.parallel_reduce(n, 0.0, [&](std::size_t b, std::size_t e) {
+    double sum = 0;
+    for (std::size_t i = b; i < e; ++i) {
+      Real vi[D];
+      for (int k = 0; k < D; ++k) vi[k] = fv[k][i];
+      const uint32_t* idx = list.begin(i);
+      const int count = int(list.count(i));
+      f8 rf{};
+      for (int s = 0; s < count; s += simd::kWidth) {
+        const std::size_t slot = i * stride + std::size_t(s);
+        i8 j;
+        std::memcpy(&j, idx + s, sizeof j);
+        for (int k = 0; k < D; ++k)
+          rf += (vi[k] - simd::at(fv[k], j)) * simd::load(pair_grad_[k].data() + slot);
       }
-      return sum;
-    });
+      double wall = -double(wall_rate_[i]);
+      for (int k = 0; k < D; ++k) wall += double(vi[k]) * wall_grad_[k][i];
+      const double rate = double(mass) * simd::hsum(rf) + wall;  // Dρᵢ/Dt
+      // Density: r = ρ*ᵢ − ρ0 with ρ*ᵢ = ρᵢ + Δt Dρᵢ/Dt; divergence: r = Dρᵢ/Dt.
+      double r = density ? fluid_.rho[i] + dt * rate - rho0 : rate;
+      const bool thin = !density && neighbours_[i] < min_neighbours;
+      double p = thin ? 0.0 : total[i] + kRelax * r * factor_[i] * to_p;
+      if (clamp) p = std::max(p, 0.0);
+      pressure_[i] = Real(p - total[i]);
+      // Where pressure acts, expansion is an error too (it is pressure applied in excess,
+      // e.g. by the warm start); where none acts, only compression is.
+      if (thin) r = 0.0;
+      else if (clamp) r = p > 0 ? std::abs(r) : std::max(r, 0.0);
+      else r = std::abs(r);
+      sum += density ? r * inv_rho0 : r * dt * inv_rho0;
+    }
+    return sum;
   }) / double(std::max<std::size_t>(1, n));
 }
 
+// vᵢ += Δt aᵢ with aᵢ = −Σⱼ m(Pᵢ + Pⱼ)∇Wᵢⱼ − 2Pᵢ Σ_b Ψ_b∇W_ib: the shared pressure
+// acceleration (walls mirror Pᵢ), from the cached gradients.
 template <int D>
 void Dfsph<D>::apply_pressure(const Real* P, double dt) {
-  this->accelerations({.pressure = P, .mirror_boundary = true, .viscosity = false, .external = false});
-  this->kick(dt);
+  const std::size_t n = fluid_.size();
+  const Real mass = Real(prm_.mass), fdt = Real(dt);
+  const NeighbourList<D>& list = ctx_.fluid_list;
+  const std::size_t stride = list.stride();
+  pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const Real Pi = P[i];
+      const uint32_t* idx = list.begin(i);
+      const int count = int(list.count(i));
+      f8 acc[D] = {};
+      for (int s = 0; s < count; s += simd::kWidth) {
+        const std::size_t slot = i * stride + std::size_t(s);
+        i8 j;
+        std::memcpy(&j, idx + s, sizeof j);
+        const f8 c = -mass * (Pi + simd::at(P, j));
+        for (int k = 0; k < D; ++k) acc[k] += c * simd::load(pair_grad_[k].data() + slot);
+      }
+      for (int k = 0; k < D; ++k) {
+        const Real a = simd::hsum(acc[k]) - 2.0f * Pi * wall_grad_[k][i];
+        fluid_.a[k][i] = a;
+        fluid_.v[k][i] += a * fdt;
+      }
+    }
+  });
 }
 
 template <int D>
@@ -198,6 +245,7 @@ double Dfsph<D>::correct_divergence_error(double dt) {
 
 #define RTSPH_INSTANTIATE(D)                                  \
   template void Dfsph<D>::compute_factors();                  \
+  template void Dfsph<D>::state_loaded();                     \
   template double Dfsph<D>::correct_density_error(double);    \
   template double Dfsph<D>::correct_divergence_error(double);
 RTSPH_INSTANTIATE(2)

@@ -22,11 +22,11 @@ class Pbf final : public FluidWorld<D> {
   void compute_lambda();
   void apply_position_correction();
   void update_velocity(double dt);           // vᵢ = (x*ᵢ − xᵢ)/Δt (Algorithm 1, line 21)
-  void xsph_and_vorticity(double dt);        // eqs. 15-17
+  void xsph_and_vorticity(double dt);        // eqs. 15-17, and ρ at the corrected positions
   void add_method_stats(SimStats& s) const override;
 
   double lattice_gradient_norm_ = 0;  // Σⱼ|∇ⱼCᵢ|² of a particle inside the rest lattice (1/m²)
-  AlignedArray<Real> lambda_, lambda_sum_;
+  AlignedArray<Real> lambda_, lambda_sum_, rho_next_;
   std::array<AlignedArray<Real>, D> predicted_, delta_;
   AlignedArray<Real> omega_[D == 2 ? 1 : 3];
   // What the λ pass leaves for the Δx pass of the same iteration (same positions): per listed

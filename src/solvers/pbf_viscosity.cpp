@@ -5,6 +5,9 @@
 //                         ηᵢ = Σⱼ (m/ρⱼ)(|ωⱼ| − |ωᵢ|)∇ᵢWᵢⱼ,  N = η/|η|,
 //                         vᵢ += Δt ε (N × ωᵢ)                                              (eq. 16)
 // In 2D ω has only a z component. Both read the same velocities (Jacobi), then all update.
+// The XSPH loop also sums the density the position corrections reached (ρᵢ = Σⱼ mWᵢⱼ +
+// Σ_b Ψ_bW_ib at the final positions), saving a pair loop per substep; its volumes m/ρⱼ use the
+// density of the last λ pass, one correction earlier.
 #include <cmath>
 
 #include "core/pair_loop.h"
@@ -19,8 +22,13 @@ using simd::i8;
 template <int D>
 void Pbf<D>::xsph_and_vorticity(double dt) {
   const double c = spec_.pbf_xsph, eps_vort = spec_.pbf_vorticity;
-  if (c <= 0 && eps_vort <= 0) return;
+  if (c <= 0 && eps_vort <= 0) {
+    ScopedTimer timer(times_.density_s);
+    this->compute_density();
+    return;
+  }
   ScopedTimer timer(times_.forces_s);
+  rho_next_.resize(fluid_.size());
   constexpr int kOmega = D == 2 ? 1 : 3;
   const std::size_t n = fluid_.size();
   const bool vort = eps_vort > 0;
@@ -39,12 +47,14 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D], vi[D];
         for (int k = 0; k < D; ++k) { xi[k] = fx[k][i]; vi[k] = fv[k][i]; }
-        f8 dv[D] = {}, dvb[D] = {}, om[kOmega] = {};
+        f8 dv[D] = {}, dvb[D] = {}, om[kOmega] = {}, wf{}, wb{};
         this->for_each_fluid_batch(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
               const f8 vol = simd::select(m, mass * simd::rcp(simd::at(rho, j)), f8{});
               f8 vji[D];
               for (int k = 0; k < D; ++k) vji[k] = simd::at(fv[k], j) - vi[k];
-              const f8 w = vol * K.value(r2);
+              const f8 W = simd::select(m, K.value(r2), f8{});
+              wf += W;
+              const f8 w = vol * W;
               for (int k = 0; k < D; ++k) dv[k] += w * vji[k];
               if (vort) {
                 const f8 G = vol * K.grad_factor(r2);  // ∇ᵢWᵢⱼ = G d
@@ -60,14 +70,18 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
         for_each_candidate_batch<D>(
             ctx_.boundary_grid, cells[i], bx, xi, support2, [&](auto j, const f8*, f8 r2, i8 m) {
               const f8 w = simd::select(m, simd::at(psi, j) * K.value(r2), f8{});
+              wb += w;
               for (int k = 0; k < D; ++k) dvb[k] += w * (simd::at(bv[k], j) - vi[k]);
             });
+        rho_next_[i] = mass * simd::hsum(wf) + simd::hsum(wb);
         for (int k = 0; k < D; ++k)
           delta_[k][i] = cx * (simd::hsum(dv[k]) + inv_rho0 * simd::hsum(dvb[k]));
         if (vort)
           for (int k = 0; k < kOmega; ++k) omega_[k][i] = simd::hsum(om[k]);
       }
     });
+    fluid_.rho.swap(rho_next_);
+    rho = fluid_.rho.data();
     if (!vort) return;
     // η = ∇|ω| and the confinement acceleration ε N × ω, added to the XSPH change.
     const Real step_eps = Real(dt * eps_vort);

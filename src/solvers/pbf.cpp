@@ -50,7 +50,7 @@ void Pbf<D>::step() {
     ScopedTimer timer(times_.integrate_s);
     this->accelerations({.viscosity = false});  // gravity + brush                     (line 2)
     this->kick(dt);                              // vᵢ ⇐ vᵢ + Δt f_ext(xᵢ)
-    this->drift(dt);                             // x*ᵢ ⇐ xᵢ + Δt vᵢ                   (line 3)
+    this->drift(dt);                             // x*ᵢ ⇐ xᵢ + Δt vᵢ, wall contact   (line 3)
     this->advance_scene(this->time_ + dt, dt);   // obstacles, emitters, put-back
   }
   this->update_neighbours();                     // lines 5-7
@@ -220,12 +220,20 @@ void Pbf<D>::apply_position_correction() {
         delta_[k][i] = mass_over_rho0 * simd::hsum(acc[k]) + 2.0f * li * inv_rho0 * wall_grad_[k][i];
     }
   });
-  // Jacobi: every Δx comes from the same positions, then all move at once.
+  // Jacobi: every Δx comes from the same positions, then all move at once; then collision
+  // detection and response against the container (Algorithm 1, line 14): a correction that
+  // would take a particle through a wall plane stops it on the plane. (The velocity follows
+  // from the positions in update_velocity.)
+  const auto walls = this->wall_planes();
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
     for (int k = 0; k < D; ++k) {
       Real* x = fluid_.x[k].data();
       const Real* dx = delta_[k].data();
-      for (std::size_t i = b; i < e; ++i) x[i] += dx[i];
+      const Real lo = walls.lo[k], hi = walls.hi[k];
+      for (std::size_t i = b; i < e; ++i) {
+        const Real xn = x[i] + dx[i];
+        x[i] = xn < lo ? lo : xn > hi ? hi : xn;
+      }
     }
   });
 }

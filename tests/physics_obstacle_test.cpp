@@ -103,7 +103,9 @@ TEST_P(Obstacle, MovingObstaclePushesTheFluid) {
   // PBF's backflow is 45% above the incompressible value over this window (measured -18.3
   // against -12.6 kg m/s per m; it has no acoustic damping like WCSPH's α = 0.5 here): not met
   // yet, recorded in docs/validation.md (issue 9).
-  if (std::string(GetParam()) != "pbf") EXPECT_NEAR(px_mean, px_ideal, 0.25 * std::abs(px_ideal));
+  if (std::string(GetParam()) != "pbf") {
+    EXPECT_NEAR(px_mean, px_ideal, 0.25 * std::abs(px_ideal));
+  }
 }
 
 TEST_P(Obstacle, SpinningObstacleDragsTheFluidThroughViscosity) {

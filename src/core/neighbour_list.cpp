@@ -51,7 +51,7 @@ void NeighbourList<D>::build(const UniformGrid<D>& grid, const Real* const xs[D]
       }
       uint32_t seen = largest.load(std::memory_order_relaxed);
       while (local_largest > seen && !largest.compare_exchange_weak(seen, local_largest)) {}
-    });
+    }, ThreadPool::kPairs);
     const std::size_t need = (std::size_t(largest.load()) + 7u) & ~std::size_t(7);
     if (need <= stride_) break;
     stride_ = need;

@@ -87,7 +87,7 @@ void Dfsph<D>::compute_factors() {
         factor_[i] = denom > tiny ? Real(1.0 / denom) : Real(0);
         neighbours_[i] = simd::hsum(cnt);
       }
-    });
+    }, ThreadPool::kPairs);
   });
 }
 
@@ -150,7 +150,7 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
       sum += density ? r * inv_rho0 : r * dt * inv_rho0;
     }
     return sum;
-  }) / double(std::max<std::size_t>(1, n));
+  }, ThreadPool::kPairs) / double(std::max<std::size_t>(1, n));
 }
 
 // vᵢ += Δt aᵢ with aᵢ = −Σⱼ m(Pᵢ + Pⱼ)∇Wᵢⱼ − 2Pᵢ Σ_b Ψ_b∇W_ib: the shared pressure
@@ -180,7 +180,7 @@ void Dfsph<D>::apply_pressure(const Real* P, double dt) {
         fluid_.v[k][i] += a * fdt;
       }
     }
-  });
+  }, ThreadPool::kPairs);
 }
 
 template <int D>

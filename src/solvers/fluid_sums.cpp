@@ -38,7 +38,7 @@ void FluidWorld<D>::compute_density() {
                                     });
         rho[i] = mass * simd::hsum(wf) + simd::hsum(wb);
       }
-    });
+    }, ThreadPool::kPairs);
   });
 }
 
@@ -147,7 +147,7 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
         }
         for (int k = 0; k < D; ++k) fluid_.a[k][i] = ai[k];
       }
-    });
+    }, ThreadPool::kPairs);
   });
 }
 
@@ -189,7 +189,7 @@ void FluidWorld<D>::extrapolate_boundary_pressure() {
         if (clamp && pb < 0) pb = 0;
         out[i] = pb * inv_rho02;
       }
-    });
+    }, ThreadPool::kPairs);
   });
 }
 
@@ -258,7 +258,7 @@ void FluidWorld<D>::compute_boundary_psi() {
         });
         boundary_.psi[i] = Real(scale / sum);
       }
-    });
+    }, ThreadPool::kPairs);
   });
 }
 

@@ -187,7 +187,7 @@ void Pbf<D>::compute_lambda() {
         lambda[i] = Real(l);
         lambda_sum[i] += Real(l);
       }
-    });
+    }, ThreadPool::kPairs);
   });
 }
 
@@ -219,7 +219,7 @@ void Pbf<D>::apply_position_correction() {
       for (int k = 0; k < D; ++k)
         delta_[k][i] = mass_over_rho0 * simd::hsum(acc[k]) + 2.0f * li * inv_rho0 * wall_grad_[k][i];
     }
-  });
+  }, ThreadPool::kPairs);
   // Jacobi: every Δx comes from the same positions, then all move at once; then collision
   // detection and response against the container (Algorithm 1, line 14): a correction that
   // would take a particle through a wall plane stops it on the plane. (The velocity follows

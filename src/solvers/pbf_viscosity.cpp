@@ -79,7 +79,7 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
         if (vort)
           for (int k = 0; k < kOmega; ++k) omega_[k][i] = simd::hsum(om[k]);
       }
-    });
+    }, ThreadPool::kPairs);
     fluid_.rho.swap(rho_next_);
     rho = fluid_.rho.data();
     if (!vort) return;
@@ -117,7 +117,7 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
           delta_[2][i] += step_eps * (N[0] * wi[1] - N[1] * wi[0]);
         }
       }
-    });
+    }, ThreadPool::kPairs);
   });
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
     for (int k = 0; k < D; ++k) {

@@ -14,7 +14,10 @@ typedef float f8 __attribute__((vector_size(32)));
 typedef int i8 __attribute__((vector_size(32)));
 
 inline f8 load(const float* p) { f8 v; std::memcpy(&v, p, sizeof v); return v; }
-inline void store(float* p, f8 v) { std::memcpy(p, &v, sizeof v); }
+// An unaligned vector type: its stores alias floats only (memcpy's alias everything, which made
+// GCC reload every array pointer of a loop after each store).
+typedef float f8u __attribute__((vector_size(32), aligned(4)));
+inline void store(float* p, f8 v) { *reinterpret_cast<f8u*>(p) = v; }
 inline f8 splat(float s) { return f8{} + s; }
 /// Lanes of a field: eight consecutive elements from j (grid ranges), or the elements at the
 /// eight indices j (neighbour lists). Pair-loop bodies read fields through at() and so work

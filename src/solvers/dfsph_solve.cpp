@@ -47,6 +47,8 @@ void Dfsph<D>::compute_factors() {
     wall_grad_[k].resize(n);
   }
   wall_rate_.resize(n);
+  Real* grad_out[D];  // hoisted: the loop's stores then cannot be taken to move the arrays
+  for (int k = 0; k < D; ++k) grad_out[k] = pair_grad_[k].data();
   // Below this the particle has (almost) no neighbours: no pressure can act on it.
   const double tiny = 1e-6 * this->lattice_gradient_sum();
   with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
@@ -63,7 +65,7 @@ void Dfsph<D>::compute_factors() {
           for (int k = 0; k < D; ++k) {
             const f8 g = G * d[k];
             gf[k] += g;
-            simd::store(pair_grad_[k].data() + slot, g);
+            simd::store(grad_out[k] + slot, g);
           }
           slot += simd::kWidth;
         });

@@ -136,6 +136,10 @@ void Pbf<D>::compute_lambda() {
     wall_grad_[k].resize(n);
   }
   pair_scorr_.resize(n * stride);
+  // Raw pointers, hoisted: the loop's stores then cannot be taken to move the arrays.
+  Real* grad_out[D];
+  for (int k = 0; k < D; ++k) grad_out[k] = pair_grad_[k].data();
+  Real* const scorr_out = pair_scorr_.data();
   const int n_corr = spec_.pbf_scorr_n;
   const double dq = spec_.pbf_scorr_dq * prm_.support;
   Real* rho = fluid_.rho.data();
@@ -157,12 +161,12 @@ void Pbf<D>::compute_lambda() {
           for (int k = 0; k < D; ++k) {
             const f8 g = G * d[k];
             gf[k] += g;
-            simd::store(pair_grad_[k].data() + slot, g);
+            simd::store(grad_out[k] + slot, g);
           }
           const f8 q = w * inv_w_dq;
           f8 qn = q;
           for (int p = 1; p < n_corr; ++p) qn *= q;
-          simd::store(pair_scorr_.data() + slot, qn);
+          simd::store(scorr_out + slot, qn);
           slot += simd::kWidth;
         });
         for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,

@@ -11,9 +11,11 @@
 namespace rtsph {
 
 double realtime_particles_per_thread(int dimension) {
-  // `rtsph view dam_break_{2,3}d --report` under Xvfb, PBF defaults, 1 solver thread (the
-  // viewer's default on 2 cores), 2026-11-23: real-time factor ~1 at these counts.
-  return dimension == 3 ? 1100 : 2500;
+  // `rtsph view dam_break_{2,3}d --accurate --set solver.method=pbf --set fluid.spacing=S
+  // --frames 400 --report` under Xvfb, 1 solver thread (the viewer's default on 2 cores),
+  // 2026-11-23: real-time factor 1.00 at 1,536 and 0.88-0.99 at 1,768-1,989 (3D), 1.00 at
+  // 3,200 and 0.95 at 4,095 (2D) fluid particles (docs/performance.md).
+  return dimension == 3 ? 1600 : 3200;
 }
 
 std::string RealtimeProfile::describe() const {

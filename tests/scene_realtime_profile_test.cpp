@@ -19,19 +19,36 @@ TEST(RealtimeProfile, MarkedSceneRunsPbfWithinTheBudget) {
     EXPECT_TRUE(p.applied);
     EXPECT_EQ(p.spec.method, "pbf");
     EXPECT_DOUBLE_EQ(p.budget, realtime_particles_per_thread(3) * threads);
-    const double n = count_particles(p.spec).fluid;
+    const auto counts = count_particles(p.spec);
+    const double n = counts.fluid + counts.emitted_max;
     EXPECT_EQ(n, p.fluid_particles);
     EXPECT_LE(n, p.budget);
     // Coarsened only as far as needed: within ~25% of the budget (lattice rounding), and
     // never finer than the scene.
     EXPECT_GT(n, 0.75 * std::min(p.budget, written)) << threads << " threads";
     EXPECT_GE(p.spec.spacing, scene.spacing);
-    // Everything but the method and the spacing is the scene's.
+    // Everything but the method and the spacing is the scene's (it has no emitters).
     SimSpec back = p.spec;
     back.method = scene.method;
     back.spacing = scene.spacing;
     EXPECT_EQ(scene_to_json(back), scene_to_json(scene));
   }
+}
+
+// A nozzle scene starts empty: its emitters' caps count, scaled so the emitted volume stays.
+TEST(RealtimeProfile, EmittersCountAndKeepTheirVolume) {
+  const SimSpec scene = load_scene("nozzle_obstacle_2d");
+  ASSERT_FALSE(scene.emitters.empty());
+  ASSERT_GT(double(scene.emitters[0].max_particles), realtime_particles_per_thread(2));
+  const RealtimeProfile p = realtime_profile(scene, 1);
+  const auto counts = count_particles(p.spec);
+  EXPECT_LE(counts.fluid + counts.emitted_max, p.budget);
+  EXPECT_GT(p.spec.spacing, scene.spacing);
+  const double volume = [](const SimSpec& s) {
+    return double(s.emitters[0].max_particles) * s.spacing * s.spacing;
+  }(p.spec);
+  const double written = double(scene.emitters[0].max_particles) * scene.spacing * scene.spacing;
+  EXPECT_NEAR(volume, written, 0.02 * written);  // floor() of the scaled cap
 }
 
 TEST(RealtimeProfile, MoreThreadsGiveAFinerSpacing) {

@@ -21,13 +21,34 @@ double realtime_particles_per_thread(int dimension) {
 std::string RealtimeProfile::describe() const {
   if (!applied) return "as written";
   return fmt::format("real-time profile: pbf, fluid.spacing {:.4g} m, {:.0f} fluid particles "
-                     "(budget {:.0f})",
+                     "at most, emitters included (budget {:.0f})",
                      spec.spacing, fluid_particles, budget);
 }
 
+namespace {
+
+// The scene at spacing s, with each emitter's particle cap scaled so that it still emits the
+// same volume of water (a cap is a count, and a coarser particle holds more water).
+SimSpec at_spacing(const SimSpec& scene, double s) {
+  SimSpec out = scene;
+  out.spacing = s;
+  const double volume_ratio = std::pow(scene.spacing / s, scene.dimension);
+  for (auto& e : out.emitters)
+    e.max_particles = std::int64_t(std::floor(double(e.max_particles) * volume_ratio));
+  return out;
+}
+
+// Fluid at the start plus the most the emitters may add.
+double particles(const SimSpec& s) {
+  const ParticleCounts c = count_particles(s);
+  return c.fluid + c.emitted_max;
+}
+
+}  // namespace
+
 RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads) {
   RealtimeProfile r{scene};
-  r.fluid_particles = count_particles(scene).fluid;
+  r.fluid_particles = particles(scene);
   if (!scene.viewer_realtime) return r;
   r.applied = true;
   r.budget = realtime_particles_per_thread(scene.dimension) * std::max(1, solver_threads);
@@ -36,13 +57,13 @@ RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads) {
   double spacing = scene.spacing;
   for (int round = 0; round < 20 && r.fluid_particles > r.budget; ++round) {
     spacing *= std::max(1.01, std::pow(r.fluid_particles / r.budget, 1.0 / scene.dimension));
-    SimSpec trial = r.spec;
-    trial.spacing = spacing;
-    r.fluid_particles = count_particles(trial).fluid;
+    r.fluid_particles = particles(at_spacing(r.spec, spacing));
   }
-  if (spacing != scene.spacing)
-    apply_override(r.spec, fmt::format("fluid.spacing={:.6g}", spacing), "viewer.realtime");
-  r.fluid_particles = count_particles(r.spec).fluid;
+  if (spacing != scene.spacing) {
+    r.spec = at_spacing(r.spec, spacing);
+    r.spec = parse_scene(scene_to_json(r.spec), "viewer.realtime");  // validated like any override
+  }
+  r.fluid_particles = particles(r.spec);
   return r;
 }
 

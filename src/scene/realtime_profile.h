@@ -15,13 +15,15 @@ double realtime_particles_per_thread(int dimension);
 struct RealtimeProfile {
   SimSpec spec;             // what the viewer runs
   bool applied = false;     // false: the scene is not marked viewer.realtime; spec as given
-  double fluid_particles = 0, budget = 0;
+  double fluid_particles = 0, budget = 0;  // at the start plus what emitters may add
   std::string describe() const;  // one line for the terminal and the panel
 };
 
 /// The scene as the viewer runs it with `solver_threads` threads: unchanged unless
 /// viewer.realtime is set; then method pbf, and fluid.spacing grown (never shrunk) until the
-/// starting fluid fits the budget. The result is validated like any override.
+/// starting fluid plus the most its emitters may add fits the budget. Emitter caps scale with
+/// the particle volume, so the scene keeps its amount of water. The result is validated like
+/// any scene.
 RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads);
 
 }  // namespace rtsph

@@ -64,4 +64,21 @@ template <int D, class Fn>
   }
 }
 
+/// Walks particle i's list eight at a time for per-pair caches written by an earlier walk at
+/// the same positions: fn(j, slot) with j the lanes' particle indices and slot the cache index
+/// of the first lane (i·stride() + s). Positions are not read; masked lanes hold whatever the
+/// writer stored for them (zeros, by convention), so no mask is passed.
+template <int D, class Fn>
+[[gnu::always_inline]] inline void for_each_cached_batch(const NeighbourList<D>& list,
+                                                         std::size_t i, Fn&& fn) {
+  const uint32_t* idx = list.begin(i);
+  const int count = int(list.count(i));
+  const std::size_t base = i * list.stride();
+  for (int s = 0; s < count; s += simd::kWidth) {
+    simd::i8 j;
+    std::memcpy(&j, idx + s, sizeof j);
+    fn(j, base + std::size_t(s));
+  }
+}
+
 }  // namespace rtsph

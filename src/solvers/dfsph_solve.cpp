@@ -113,7 +113,6 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
   const PairArrays<D> pa = this->pair_arrays();
   const auto& fv = pa.fv;
   const NeighbourList<D>& list = ctx_.fluid_list;
-  const std::size_t stride = list.stride();
   const double rho0 = prm_.rho0, inv_rho0 = 1.0 / rho0;
   const bool clamp = spec_.clamp_negative_pressure;
   const double to_p = density ? 1.0 / (dt * dt) : 1.0 / dt;
@@ -125,16 +124,11 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
     for (std::size_t i = b; i < e; ++i) {
       Real vi[D];
       for (int k = 0; k < D; ++k) vi[k] = fv[k][i];
-      const uint32_t* idx = list.begin(i);
-      const int count = int(list.count(i));
       f8 rf{};
-      for (int s = 0; s < count; s += simd::kWidth) {
-        const std::size_t slot = i * stride + std::size_t(s);
-        i8 j;
-        std::memcpy(&j, idx + s, sizeof j);
+      for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
         for (int k = 0; k < D; ++k)
           rf += (vi[k] - simd::at(fv[k], j)) * simd::load(pair_grad_[k].data() + slot);
-      }
+      });
       double wall = -double(wall_rate_[i]);
       for (int k = 0; k < D; ++k) wall += double(vi[k]) * wall_grad_[k][i];
       const double rate = double(mass) * simd::hsum(rf) + wall;  // Dρᵢ/Dt
@@ -162,20 +156,14 @@ void Dfsph<D>::apply_pressure(const Real* P, double dt) {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), fdt = Real(dt);
   const NeighbourList<D>& list = ctx_.fluid_list;
-  const std::size_t stride = list.stride();
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Real Pi = P[i];
-      const uint32_t* idx = list.begin(i);
-      const int count = int(list.count(i));
       f8 acc[D] = {};
-      for (int s = 0; s < count; s += simd::kWidth) {
-        const std::size_t slot = i * stride + std::size_t(s);
-        i8 j;
-        std::memcpy(&j, idx + s, sizeof j);
+      for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
         const f8 c = -mass * (Pi + simd::at(P, j));
         for (int k = 0; k < D; ++k) acc[k] += c * simd::load(pair_grad_[k].data() + slot);
-      }
+      });
       for (int k = 0; k < D; ++k) {
         const Real a = simd::hsum(acc[k]) - 2.0f * Pi * wall_grad_[k][i];
         fluid_.a[k][i] = a;

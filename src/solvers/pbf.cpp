@@ -204,22 +204,16 @@ void Pbf<D>::apply_position_correction() {
   // s_corr in units of a unit constraint's λ inside the rest lattice, −1/Σ|∇C|².
   const Real k_corr = Real(spec_.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30));
   const NeighbourList<D>& list = ctx_.fluid_list;
-  const std::size_t stride = list.stride();
   const Real* lambda = lambda_.data();
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Real li = lambda[i];
-      const uint32_t* idx = list.begin(i);
-      const int count = int(list.count(i));
       f8 acc[D] = {};
-      for (int s = 0; s < count; s += simd::kWidth) {
-        const std::size_t slot = i * stride + std::size_t(s);
-        i8 j;
-        std::memcpy(&j, idx + s, sizeof j);
-        // Masked lanes hold zero gradients, so they add nothing.
+      // Masked lanes hold zero gradients, so they add nothing.
+      for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
         const f8 c = li + simd::at(lambda, j) - k_corr * simd::load(pair_scorr_.data() + slot);
         for (int k = 0; k < D; ++k) acc[k] += c * simd::load(pair_grad_[k].data() + slot);
-      }
+      });
       for (int k = 0; k < D; ++k)
         delta_[k][i] = mass_over_rho0 * simd::hsum(acc[k]) + 2.0f * li * inv_rho0 * wall_grad_[k][i];
     }

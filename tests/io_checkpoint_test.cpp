@@ -75,6 +75,7 @@ class FakeSim final : public Simulation {
             StateField{"time", &time_, sizeof time_}, field("boundary_x", bx_)};
   }
   void state_loaded() override { ++loaded; }
+  void overwrite_fluid(const float* const*, const float* const*) override {}
 
   bool same_state(const FakeSim& o) const {
     return x_ == o.x_ && v_ == o.v_ && rho_ == o.rho_ && bx_ == o.bx_ && time_ == o.time_;

@@ -99,6 +99,7 @@ class FluidWorld : public Simulation {
   void prepare_state(std::size_t fluid_count) override;
   std::vector<StateField> state_fields() override;
   void state_loaded() override;
+  void overwrite_fluid(const float* const* x, const float* const* v) override;
 
  protected:
   /// Samples the fluid, walls and obstacles; the method then computes its initial fields.
@@ -119,6 +120,11 @@ class FluidWorld : public Simulation {
   virtual void add_method_scalars(std::vector<StateField>&) {}
   /// Method figures for the statistics (iterations, residual errors).
   virtual void add_method_stats(SimStats&) const {}
+  /// Whether edited positions (overwrite_fluid) must be sorted into cells before the next step:
+  /// true when the step's first pair sums use the previous step's grid (DFSPH). A method whose
+  /// step sorts before its first pair sum answers false, and an edit then leaves the memory
+  /// order, and so the bits of the run, exactly as they were.
+  virtual bool sort_after_edit() const { return true; }
 
   // Shared stages, in the order a step usually calls them.
   struct Extremes { double v2 = 0, a2 = 0; };

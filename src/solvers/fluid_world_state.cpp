@@ -1,4 +1,5 @@
 // Read access, statistics and checkpoint state of the shared fluid world.
+#include <algorithm>
 #include <cstring>
 
 #include "solvers/fluid_world.h"
@@ -138,6 +139,34 @@ void FluidWorld<D>::state_loaded() {
 }
 
 template <int D>
+void FluidWorld<D>::overwrite_fluid(const float* const* x, const float* const* v) {
+  const std::size_t n = fluid_.size();
+  for (int k = 0; k < D; ++k) {
+    if (x) std::copy_n(x[k], n, fluid_.x[k].data());
+    if (v) std::copy_n(v[k], n, fluid_.v[k].data());
+  }
+  if (!x) return;
+  if (!sort_after_edit()) {
+    state_loaded();
+    return;
+  }
+  // Moved particles must sit in cell order for the grid's ranges. The sort leaves a, ρ and p in
+  // the old order (a step recomputes them right after sorting), but the next step's first kick
+  // reads a, so those follow their particles here.
+  sort_fluid_by_cell();
+  const uint32_t* order = ctx_.fluid_grid.order();
+  auto follow = [&](AlignedArray<Real>& arr) {
+    ctx_.tmp.resize(n);
+    for (std::size_t i = 0; i < n; ++i) ctx_.tmp[i] = arr[order[i]];
+    arr.swap(ctx_.tmp);
+  };
+  for (int k = 0; k < D; ++k) follow(fluid_.a[k]);
+  follow(fluid_.rho);
+  follow(fluid_.p);
+  state_loaded();  // the method's override too: DFSPH's factors and caches
+}
+
+template <int D>
 Pose FluidWorld<D>::obstacle_transform(int index) const {
   if (index < 0 || index >= int(obstacles_.size())) return {};
   return obstacles_[index].pose;
@@ -150,6 +179,7 @@ Pose FluidWorld<D>::obstacle_transform(int index) const {
   template void FluidWorld<D>::prepare_state(std::size_t);                   \
   template std::vector<StateField> FluidWorld<D>::state_fields();            \
   template void FluidWorld<D>::state_loaded();                               \
+  template void FluidWorld<D>::overwrite_fluid(const float* const*, const float* const*); \
   template Pose FluidWorld<D>::obstacle_transform(int) const;
 RTSPH_INSTANTIATE(2)
 RTSPH_INSTANTIATE(3)

@@ -24,6 +24,7 @@ class Pbf final : public FluidWorld<D> {
   void update_velocity(double dt);           // vᵢ = (x*ᵢ − xᵢ)/Δt (Algorithm 1, line 21)
   void xsph_and_vorticity(double dt);        // eqs. 15-17, and ρ at the corrected positions
   void add_method_stats(SimStats& s) const override;
+  bool sort_after_edit() const override { return false; }  // step(): predict, then sort
 
   double lattice_gradient_norm_ = 0;  // Σⱼ|∇ⱼCᵢ|² of a particle inside the rest lattice (1/m²)
   AlignedArray<Real> lambda_, lambda_sum_, rho_next_;

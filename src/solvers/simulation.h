@@ -99,6 +99,12 @@ class Simulation {
   virtual std::vector<StateField> state_fields() = 0;
   /// Call after filling the fields from a checkpoint: rebuilds derived data (grids).
   virtual void state_loaded() = 0;
+
+  /// Replaces the fluid's positions and/or velocities (scripting: the Python API). Arrays are in
+  /// fluid()'s memory order, one per axis; nullptr leaves that quantity as it is. New positions
+  /// are sorted into cells (each particle keeps its id, velocity and acceleration) and derived
+  /// data rebuilt as after a checkpoint load, so the next step() starts from them.
+  virtual void overwrite_fluid(const float* const* x, const float* const* v) = 0;
 };
 
 /// Creates the solver named by spec.method ("wcsph", "pbf", "dfsph"). threads = 0 uses all hardware threads.

@@ -71,7 +71,7 @@ TEST(SceneParams, DefaultsInTheTablesAreTheStructDefaults) {
 }
 
 TEST(SceneParams, TableHasTheSpecifiedKeys) {
-  for (const char* key : {"name", "dimension", "domain.min", "domain.max", "fluid.spacing",
+  for (const char* key : {"name", "dimension", "domain.min", "domain.max", "domain.periodic", "fluid.spacing",
                           "fluid.rest_density", "fluid.viscosity", "solver.method", "solver.eos",
                           "solver.speed_of_sound", "solver.stiffness", "solver.tait_gamma",
                           "solver.kernel", "solver.smoothing_ratio", "solver.artificial_viscosity",
@@ -82,7 +82,7 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
                           "solver.pbf.scorr_k", "solver.pbf.scorr_n", "solver.pbf.scorr_dq",
                           "solver.pbf.xsph", "solver.pbf.vorticity",
                           "solver.dfsph.max_density_error", "solver.dfsph.max_divergence_error",
-                          "solver.dfsph.max_iterations", "gravity", "end_time"})
+                          "solver.dfsph.max_iterations", "gravity", "body_force", "end_time"})
     EXPECT_NE(find_param(key), nullptr) << key;
   std::set<std::string> live;
   for (const auto& p : parameter_table())
@@ -90,7 +90,7 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
   EXPECT_EQ(live, (std::set<std::string>{"fluid.viscosity", "solver.artificial_viscosity",
                                          "solver.clamp_negative_pressure", "solver.time_step.mode",
                                          "solver.time_step.cfl", "solver.time_step.dt",
-                                         "solver.time_step.max_dt", "gravity",
+                                         "solver.time_step.max_dt", "gravity", "body_force",
                                          // every PBF and DFSPH parameter is read afresh each step
                                          "solver.pbf.time_step", "solver.pbf.substeps",
                                          "solver.pbf.iterations", "solver.pbf.cfl",

@@ -7,19 +7,32 @@
 namespace rtsph {
 
 template <int D>
-void UniformGrid<D>::configure(const Vec<D>& lo, const Vec<D>& hi, Real cell) {
+void UniformGrid<D>::configure(const Vec<D>& lo, const Vec<D>& hi, Real cell, const bool* periodic) {
   // A cell a few ulps wider than the support, and cell indices in double: otherwise float
   // rounding can put two particles closer than the support into cells two apart.
-  cell_ = cell * Real(1 + 1e-5);
-  inv_cell_ = 1.0 / double(cell_);
+  const Real edge = cell * Real(1 + 1e-5);
   std::size_t cells = 1;
+  any_periodic_ = false;
   for (int a = 0; a < D; ++a) {
     // +2 padding cells so the stencil of any clamped particle stays inside the grid.
     const double span = std::max(0.0, double(hi[a]) - double(lo[a]));
-    const double interior = std::max(1.0, std::ceil(span / double(cell_) + 1e-6));
+    double interior = std::max(1.0, std::ceil(span / double(edge) + 1e-6));
+    cell_[a] = edge;
+    period_[a] = 0;
+    if (periodic && periodic[a]) {
+      // Whole cells per period, each at least the support: the stencil then covers every
+      // image within reach, and three distinct cells per row keep a pair from being seen twice.
+      interior = std::floor(span / double(edge));
+      if (interior < 3)
+        throw std::invalid_argument("a periodic axis must be at least three kernel supports long");
+      cell_[a] = Real(span / interior);
+      period_[a] = Real(span);
+      any_periodic_ = true;
+    }
     if (interior > 1e7) throw std::length_error("neighbour grid too large");
+    inv_cell_[a] = 1.0 / double(cell_[a]);
     dims_[a] = int(interior) + 2;
-    origin_[a] = lo[a] - cell_;
+    origin_[a] = lo[a] - cell_[a];
     cells *= std::size_t(dims_[a]);
   }
   if (cells >= (std::size_t(1) << 31)) throw std::length_error("neighbour grid too large");
@@ -31,7 +44,12 @@ template <int D>
 uint32_t UniformGrid<D>::cell_of(const Vec<D>& p) const {
   uint32_t key = 0, stride = 1;
   for (int a = 0; a < D; ++a) {
-    const double f = (double(p[a]) - double(origin_[a])) * inv_cell_;
+    double f = (double(p[a]) - double(origin_[a])) * inv_cell_[a];
+    if (period_[a] > 0) {
+      // Wrap into the period's cells 1..n (a point slightly outside after a correction).
+      const double n = double(dims_[a] - 2);
+      f = 1.0 + (f - 1.0) - n * std::floor((f - 1.0) / n);
+    }
     // The comparison form also sends NaN to the edge cell instead of undefined behaviour.
     int c = f >= 1.0 ? (f < double(dims_[a] - 1) ? int(f) : dims_[a] - 2) : 1;
     key += uint32_t(c) * stride;

@@ -5,6 +5,11 @@
 // cell are contiguous and, because x is fastest, the three cells of a row along x form one
 // contiguous range: a particle's candidates are 3^(D-1) ranges (9 in 3D, 3 in 2D).
 // A layer of empty padding cells surrounds the grid, so stencils never leave it.
+//
+// Periodic axes: the interior cells tile the period exactly (cell edge = period / n ≥ the
+// support, n ≥ 3), a stencil that reaches past the seam continues on the far side (the row
+// along x is then split into separate ranges), and distances use the minimum image
+// (wrap_offset), so a pair across the seam is a pair like any other.
 #include <cstdint>
 #include <cstddef>
 
@@ -17,11 +22,18 @@ namespace rtsph {
 template <int D>
 class UniformGrid {
  public:
-  /// Covers [lo, hi] with cells of edge `cell`. Points outside are clamped to the edge cells.
-  void configure(const Vec<D>& lo, const Vec<D>& hi, Real cell);
+  /// Covers [lo, hi] with cells of edge `cell` (at least). Points outside are clamped to the
+  /// edge cells, except along axes with periodic[a]: there [lo, hi) is one period, points wrap,
+  /// and it must hold at least three cells (else std::invalid_argument).
+  void configure(const Vec<D>& lo, const Vec<D>& hi, Real cell, const bool* periodic = nullptr);
 
   std::size_t cell_count() const { return cells_; }
-  Real cell_size() const { return cell_; }
+  /// Cell edge along `axis` (the support, a little more along a periodic axis).
+  Real cell_size(int axis = 0) const { return cell_[axis]; }
+  bool periodic(int axis) const { return period_[axis] > 0; }
+  bool any_periodic() const { return any_periodic_; }
+  /// Period along `axis` (m), 0 when the axis is not periodic.
+  Real period(int axis) const { return period_[axis]; }
   const Vec<D>& origin() const { return origin_; }
   int dim(int axis) const { return dims_[axis]; }
 
@@ -40,10 +52,23 @@ class UniformGrid {
     return order_.bytes() + start_.bytes() + keys_.bytes() + keys_sorted_.bytes();
   }
 
+  /// The minimum image of the offsets d (x_i − x_j) along periodic axes: |d| ≤ period/2. Any
+  /// two points of the domain are less than 1.5 periods apart, so one shift suffices.
+  template <class V>
+  [[gnu::always_inline]] void wrap_offsets(V* d) const {
+    for (int k = 0; k < D; ++k) {
+      if (period_[k] <= 0) continue;
+      const Real L = period_[k], half = Real(0.5) * period_[k];
+      d[k] = d[k] > half ? d[k] - L : d[k];
+      d[k] = d[k] < -half ? d[k] + L : d[k];
+    }
+  }
+
   /// Calls fn(begin, end) for each contiguous candidate range around `cell`.
   template <class Fn>
   void for_each_range(uint32_t cell, Fn&& fn) const {
     const uint32_t* s = start_.data();
+    if (any_periodic_) return for_each_periodic_range(cell, fn);
     if constexpr (D == 2) {
       for (int dy = -1; dy <= 1; ++dy) {
         const uint32_t k = cell + dy * dims_[0] - 1;
@@ -60,9 +85,46 @@ class UniformGrid {
   }
 
  private:
+  // The stencil with wrapping: rows along y/z continue past the seam, and the row along x is
+  // one range when it does not cross the seam, else one range per cell.
+  template <class Fn>
+  void for_each_periodic_range(uint32_t cell, Fn&& fn) const {
+    const uint32_t* s = start_.data();
+    int c[3] = {0, 0, 0};
+    uint32_t rest = cell;
+    for (int a = 0; a < D; ++a) {
+      c[a] = int(rest % uint32_t(dims_[a]));
+      rest /= uint32_t(dims_[a]);
+    }
+    auto wrapped = [&](int a, int v) {  // interior cells are 1..dims-2
+      if (period_[a] <= 0) return v;
+      const int n = dims_[a] - 2;
+      return v < 1 ? v + n : v > n ? v - n : v;
+    };
+    const bool split_x = period_[0] > 0 && (c[0] == 1 || c[0] == dims_[0] - 2);
+    const int dz_lo = D == 3 ? -1 : 0, dz_hi = D == 3 ? 1 : 0;
+    for (int dz = dz_lo; dz <= dz_hi; ++dz)
+      for (int dy = -1; dy <= 1; ++dy) {
+        const int y = wrapped(1, c[1] + dy);
+        const int z = D == 3 ? wrapped(2, c[2] + dz) : 0;
+        const uint32_t row = uint32_t(z) * uint32_t(dims_[1]) * uint32_t(dims_[0]) + uint32_t(y) * uint32_t(dims_[0]);
+        if (!split_x) {
+          const uint32_t k = row + uint32_t(c[0] - 1);
+          fn(s[k], s[k + 3]);
+        } else {
+          for (int dx = -1; dx <= 1; ++dx) {
+            const uint32_t k = row + uint32_t(wrapped(0, c[0] + dx));
+            fn(s[k], s[k + 1]);
+          }
+        }
+      }
+  }
+
   Vec<D> origin_{};
-  Real cell_ = 1;
-  double inv_cell_ = 1;
+  Real cell_[D]{};
+  double inv_cell_[D]{};
+  Real period_[D]{};
+  bool any_periodic_ = false;
   int dims_[D]{};
   std::size_t cells_ = 0, n_ = 0;
   AlignedArray<uint32_t> keys_, keys_sorted_, order_, start_;

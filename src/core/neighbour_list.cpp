@@ -13,6 +13,7 @@ void NeighbourList<D>::build(const UniformGrid<D>& grid, const Real* const xs[D]
   using simd::f8;
   using simd::i8;
   n_ = n;
+  grid_ = &grid;
   count_.resize(n);
   const uint32_t* cells = grid.sorted_cells();
   // One pass into a fixed stride; a particle with more neighbours than the stride grows it to

@@ -31,9 +31,12 @@ class NeighbourList {
   uint32_t count(std::size_t i) const { return count_[i]; }
   double mean_count() const;
   std::size_t bytes() const { return idx_.bytes() + count_.bytes(); }
+  /// The grid the list was built from: its periodic axes give the walk its minimum image.
+  const UniformGrid<D>* grid() const { return grid_; }
 
  private:
   AlignedArray<uint32_t> idx_, count_;
+  const UniformGrid<D>* grid_ = nullptr;
   std::size_t n_ = 0, stride_ = 0;
   bool valid_ = false;
 };
@@ -50,15 +53,15 @@ template <int D, class Fn>
   using simd::i8;
   const uint32_t* idx = list.begin(i);
   const int count = int(list.count(i));
+  const bool periodic = list.grid()->any_periodic();
   for (int s = 0; s < count; s += simd::kWidth) {
     i8 j;
     std::memcpy(&j, idx + s, sizeof j);
     f8 d[D];
+    for (int k = 0; k < D; ++k) d[k] = xi[k] - simd::at(xs[k], j);
+    if (periodic) list.grid()->wrap_offsets(d);  // minimum image across a seam
     f8 r2 = f8{};
-    for (int k = 0; k < D; ++k) {
-      d[k] = xi[k] - simd::at(xs[k], j);
-      r2 += d[k] * d[k];
-    }
+    for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
     const i8 mask = (simd::lane_index() < count - s) & (r2 < support2);
     fn(j, d, r2, mask);
   }

@@ -6,6 +6,7 @@
 #include <algorithm>
 
 #include "scene/scene_error.h"
+#include "core/kernels.h"
 #include "scene/values.h"
 #include "solvers/simulation.h"
 
@@ -49,6 +50,35 @@ class Checker {
       if (2 * s_.spacing > s_.domain_max[i] - s_.domain_min[i])
         fail("fluid.spacing", format_number(s_.spacing),
              fmt::format("expected at most half the smallest extent of {}", domain()));
+  }
+
+  // A periodic extent holds whole lattice cells, or the seam would be a gap or an overlap in
+  // the fluid and the wall samples; and three kernel supports, or the neighbour grid could not
+  // tell a particle's images apart.
+  void periodic_axes() const {
+    static const char* kAxis = "xyz";
+    if (d_ == 2 && axis_is_periodic(s_.periodic, 2))
+      fail("domain.periodic", fmt::format("\"{}\"", periodic_name()), "expected none, x, y or xy in a 2D scene");
+    const double support = double(support_ratio(s_.kernel)) * s_.smoothing_ratio * s_.spacing;
+    for (int k = 0; k < d_; ++k) {
+      if (!axis_is_periodic(s_.periodic, k)) continue;
+      const double extent = s_.domain_max[k] - s_.domain_min[k];
+      const double cells = extent / s_.spacing;
+      if (std::abs(cells - std::round(cells)) > 1e-6 * std::max(1.0, cells))
+        fail("domain.periodic", fmt::format("\"{}\"", periodic_name()),
+             fmt::format("expected the periodic {} extent {} m to be a whole number of fluid.spacing = {} m",
+                         kAxis[k], format_number(extent), format_number(s_.spacing)));
+      if (extent < 3 * support * (1 + 1e-4))
+        fail("domain.periodic", fmt::format("\"{}\"", periodic_name()),
+             fmt::format("expected the periodic {} extent {} m to be at least three kernel supports ({} m)",
+                         kAxis[k], format_number(extent), format_number(3 * support * (1 + 1e-4))));
+    }
+  }
+  std::string periodic_name() const {
+    std::string n;
+    for (int k = 0; k < 3; ++k)
+      if (axis_is_periodic(s_.periodic, k)) n += "xyz"[k];
+    return n.empty() ? "none" : n;
   }
 
   void blocks() const {
@@ -113,6 +143,7 @@ class Checker {
 void check_geometry(const SimSpec& spec, const std::string& source) {
   const Checker c(spec, source);
   c.domain_and_spacing();
+  c.periodic_axes();
   c.blocks();
   c.obstacles();
   c.emitters();

@@ -77,6 +77,13 @@ const std::vector<ParamInfo>& parameter_table() {
                                    .default_vec = {1, 1, 1},
                                    .help = "Upper corner of the container; each component must "
                                            "exceed domain.min."}),
+      field<&SimSpec::periodic>({.key = "domain.periodic", .default_text = "none",
+                                 .choices = {"none", "x", "y", "xy", "z", "xz", "yz", "xyz"},
+                                 .help = "Axes that wrap around: a particle leaving through one face "
+                                         "enters through the opposite one, neighbours see across "
+                                         "the seam, and there are no walls on those axes. Each "
+                                         "periodic extent must be a whole number of spacings and "
+                                         "at least three kernel supports."}),
       field<&SimSpec::spacing>({.key = "fluid.spacing", .unit = "m", .min = 1e-5, .max = 10,
                                 .default_value = 0.02,
                                 .help = "Initial particle spacing. Halving it multiplies the "
@@ -204,6 +211,12 @@ const std::vector<ParamInfo>& parameter_table() {
       field<&SimSpec::gravity>({.key = "gravity", .unit = "m/s²", .min = -1000, .max = 1000,
                                 .default_vec = {0, -9.81, 0},
                                 .help = "Gravitational acceleration; y is up.", .live = true}),
+      field<&SimSpec::body_force>({.key = "body_force", .unit = "m/s²", .min = -1000, .max = 1000,
+                                   .default_vec = {0, 0, 0},
+                                   .help = "A uniform acceleration added to gravity, e.g. the "
+                                           "stand-in for a pressure gradient driving a periodic "
+                                           "channel (Poiseuille flow).",
+                                   .live = true}),
       field<&SimSpec::end_time>({.key = "end_time", .unit = "s", .min = 0, .max = kTime,
                                  .min_exclusive = true, .default_value = 2,
                                  .help = "Simulated time at which `rtsph run` stops."}),

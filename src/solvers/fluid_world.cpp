@@ -89,7 +89,8 @@ void FluidWorld<D>::add_fluid_particle(const Vec<D>& x, const Vec<D>& v) {
   fluid_.resize(i + 1);
   fluid_.set_pos(i, x);
   fluid_.set_vel(i, v);
-  for (int k = 0; k < D; ++k) fluid_.a[k][i] = Real(spec_.gravity[k]);
+  const Vec3d g = external_acceleration();
+  for (int k = 0; k < D; ++k) fluid_.a[k][i] = Real(g[k]);
   fluid_.rho[i] = Real(prm_.rho0);
   fluid_.p[i] = 0;
   fluid_.id[i] = next_id_++;
@@ -165,6 +166,16 @@ void FluidWorld<D>::drift(double dt) {
       Real* x = fluid_.x[k].data();
       Real* v = fluid_.v[k].data();
       const Real lo = walls.lo[k], hi = walls.hi[k];
+      const Real period = ctx_.fluid_grid.period(k);
+      if (period > 0) {
+        // Periodic: leaving through one face is entering through the other.
+        const Real start = Real(prm_.domain_min[k]), end = Real(prm_.domain_max[k]);
+        for (std::size_t i = b; i < e; ++i) {
+          const Real xn = x[i] + v[i] * fdt;
+          x[i] = xn >= end ? xn - period : xn < start ? xn + period : xn;
+        }
+        continue;
+      }
       for (std::size_t i = b; i < e; ++i) {
         // Contact with a wall plane (a NaN fails both tests and is left to put_back_escaped).
         const Real xn = x[i] + v[i] * fdt, vi = v[i];
@@ -195,6 +206,12 @@ void FluidWorld<D>::put_back_escaped() {
       for (int k = 0; k < D; ++k) {
         Real& x = fluid_.x[k][i];
         Real& v = fluid_.v[k][i];
+        const Real period = ctx_.fluid_grid.period(k);
+        if (period > 0 && std::isfinite(x)) {  // a correction's overshoot past the seam wraps
+          x = x >= hi[k] ? x - period : x < lo[k] ? x + period : x;
+          if (!std::isfinite(v)) { v = 0; moved = true; }
+          continue;
+        }
         if (!(x >= lo[k])) { x = lo[k] + margin; v = std::max(v, Real(0)); moved = true; }
         else if (!(x <= hi[k])) { x = hi[k] - margin; v = std::min(v, Real(0)); moved = true; }
         if (!std::isfinite(v)) v = 0;
@@ -246,6 +263,31 @@ void FluidWorld<D>::sort_boundary_by_cell() {
   for (int k = 0; k < D; ++k) xs[k] = boundary_.x[k].data();
   ctx_.boundary_grid.build(xs, boundary_.size(), pool_);
   boundary_.permute(ctx_.boundary_grid.order(), ctx_.tmp, pool_);
+  compute_wall_geometry();
+}
+
+// A container-wall sample lies outside the domain box; the face it lies furthest beyond is its
+// wall plane (corner samples pick one face). Obstacle samples get depth 0: no extrapolation.
+template <int D>
+void FluidWorld<D>::compute_wall_geometry() {
+  const std::size_t n = boundary_.size();
+  for (int k = 0; k < D; ++k) ctx_.wall_normal[k].resize(n);
+  ctx_.wall_depth.resize(n);
+  for (std::size_t b = 0; b < n; ++b) {
+    int axis = -1;
+    Real depth = 0, sign = 0;
+    if (boundary_.owner[b] < 0) {
+      for (int k = 0; k < D; ++k) {
+        if (ctx_.boundary_grid.periodic(k)) continue;
+        const Real below = Real(prm_.domain_min[k]) - boundary_.x[k][b];
+        const Real above = boundary_.x[k][b] - Real(prm_.domain_max[k]);
+        if (below > depth) { depth = below; axis = k; sign = 1; }
+        if (above > depth) { depth = above; axis = k; sign = -1; }
+      }
+    }
+    for (int k = 0; k < D; ++k) ctx_.wall_normal[k][b] = k == axis ? sign : Real(0);
+    ctx_.wall_depth[b] = axis >= 0 ? depth : Real(0);
+  }
 }
 
 template <int D>

@@ -5,6 +5,7 @@
 // statistics, checkpoint fields and live parameters. A method (wcsph.h, pbf.h, dfsph.h) derives
 // from FluidWorld, owns only its own per-particle fields and writes its step() from the stages
 // here; it copies none of them.
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -35,11 +36,17 @@ struct StepContext {
   AlignedArray<Real> p_over_rho2;  // pᵢ/ρᵢ² (or a method's equivalent), symmetric pressure term
   AlignedArray<Real> inv_rho;      // 1/ρᵢ, Morris viscosity
   AlignedArray<Real> boundary_p_over_rho2;  // p_b/ρ0² extrapolated from the fluid (Adami 2012)
+  // Container-wall samples: the unit normal into the fluid and the sample's depth behind the
+  // wall plane (m); zero for obstacle samples. For the no-slip extrapolation of the viscous
+  // term (Morris et al. 1997). Derived from positions after every boundary sort.
+  AlignedArray<Real> wall_normal[D];
+  AlignedArray<Real> wall_depth;
   AlignedArray<Real> tmp;          // permutation scratch (boundary and method fields)
   typename FluidParticles<D>::Spare spare;  // double buffers for the fluid reorder
   std::size_t bytes() const {
     return fluid_grid.bytes() + boundary_grid.bytes() + p_over_rho2.bytes() + inv_rho.bytes() +
-           boundary_p_over_rho2.bytes() + tmp.bytes() + spare.bytes() + fluid_list.bytes();
+           boundary_p_over_rho2.bytes() + tmp.bytes() + spare.bytes() + fluid_list.bytes() +
+           wall_depth.bytes() * (D + 1);
   }
 };
 
@@ -75,6 +82,8 @@ struct PairArrays {
   const Real* bx[D];     // boundary positions, velocities
   const Real* bv[D];
   const Real* psi;       // boundary Ψ
+  const Real* wall_normal[D];  // container-wall samples' normal into the fluid, and depth
+  const Real* wall_depth;
   const uint32_t* cells; // fluid particle i's cell in either grid
 };
 
@@ -143,14 +152,19 @@ class FluidWorld : public Simulation {
   /// fluid lattice layer and half a spacing inside the first wall sample layer, the faces of the
   /// volumes the samples stand for (geometry.h, sample_walls).
   struct WallPlanes { Real lo[D], hi[D]; };
+  /// A periodic axis has no walls: its planes are at ±∞ and drift wraps instead.
   WallPlanes wall_planes() const {
     WallPlanes w;
+    const Real inf = std::numeric_limits<Real>::infinity();
     for (int k = 0; k < D; ++k) {
-      w.lo[k] = Real(prm_.domain_min[k]);
-      w.hi[k] = Real(prm_.domain_max[k]);
+      const bool wrap = ctx_.fluid_grid.periodic(k);
+      w.lo[k] = wrap ? -inf : Real(prm_.domain_min[k]);
+      w.hi[k] = wrap ? inf : Real(prm_.domain_max[k]);
     }
     return w;
   }
+  /// Gravity plus the scene's body force: the uniform acceleration every particle feels.
+  Vec3d external_acceleration() const { return spec_.gravity + spec_.body_force; }
   void move_obstacles(double t_new, double dt);  // prescribed or user-driven rigid motion
   void emit_particles(double t_new);     // nozzle layers due by t_new
   void put_back_escaped();               // the safety net (a diagnostic): nothing is ever lost
@@ -191,6 +205,8 @@ class FluidWorld : public Simulation {
       a.bv[k] = boundary_.v[k].data();
     }
     a.psi = boundary_.psi.data();
+    for (int k = 0; k < D; ++k) a.wall_normal[k] = ctx_.wall_normal[k].data();
+    a.wall_depth = ctx_.wall_depth.data();
     a.cells = ctx_.fluid_grid.sorted_cells();
     return a;
   }
@@ -223,6 +239,7 @@ class FluidWorld : public Simulation {
   void compute_boundary_psi();
   void sort_fluid_by_cell();
   void sort_boundary_by_cell();
+  void compute_wall_geometry();  // ctx_.wall_normal/wall_depth for the boundary's current order
   void add_fluid_particle(const Vec<D>& x, const Vec<D>& v);
   template <bool kPressure, bool kViscosity, bool kExternal>
   void accelerations_impl(const ForceTerms& terms);

@@ -23,14 +23,17 @@ void FluidWorld<D>::build_boundary() {
     boundary_.owner[i] = s.owner;
   }
   // Both grids share one geometry, so a fluid particle's cell key indexes either.
+  // A periodic axis spans exactly one period (no walls there to leave room for).
   const double margin = (std::max(1, spec_.boundary_layers) + 1) * spec_.spacing;
   Vec<D> lo, hi;
+  bool periodic[D];
   for (int k = 0; k < D; ++k) {
-    lo[k] = Real(spec_.domain_min[k] - margin);
-    hi[k] = Real(spec_.domain_max[k] + margin);
+    periodic[k] = axis_is_periodic(spec_.periodic, k);
+    lo[k] = Real(spec_.domain_min[k] - (periodic[k] ? 0 : margin));
+    hi[k] = Real(spec_.domain_max[k] + (periodic[k] ? 0 : margin));
   }
-  ctx_.fluid_grid.configure(lo, hi, Real(prm_.support));
-  ctx_.boundary_grid.configure(lo, hi, Real(prm_.support));
+  ctx_.fluid_grid.configure(lo, hi, Real(prm_.support), periodic);
+  ctx_.boundary_grid.configure(lo, hi, Real(prm_.support), periodic);
   sort_boundary_by_cell();
   compute_boundary_psi();
   if (!obstacles_.empty()) move_obstacles(0.0, 0.0);

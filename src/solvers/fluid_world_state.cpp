@@ -129,6 +129,7 @@ void FluidWorld<D>::state_loaded() {
   for (int k = 0; k < D; ++k) xs[k] = boundary_.x[k].data();
   ctx_.boundary_grid.build(xs, boundary_.size(), pool_);
   boundary_.permute(ctx_.boundary_grid.order(), ctx_.tmp, pool_);
+  compute_wall_geometry();
   // The fluid was saved in cell order (DFSPH and WCSPH save right after a sort and only change
   // velocities after it), and the counting sort is stable, so this rebuilds the same cell
   // ranges without moving a particle; DFSPH's first pair loop of the next step reads them.

@@ -96,15 +96,18 @@ std::vector<BoundarySample> sample_walls(const SimSpec& s) {
   const long L = std::max(1, s.boundary_layers);
   long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, n[3] = {1, 1, 1};
   double step[3] = {0, 0, 0};
+  bool wraps[3] = {false, false, false};
   for (int k = 0; k < s.dimension; ++k) {
     n[k] = lattice_count(s.domain_max[k] - s.domain_min[k], s.spacing);
     step[k] = (s.domain_max[k] - s.domain_min[k]) / double(n[k]);
-    lo[k] = -L;
-    hi[k] = n[k] - 1 + L;
+    // A periodic axis has no walls of its own, and the others' walls span exactly one period.
+    wraps[k] = axis_is_periodic(s.periodic, k);
+    lo[k] = wraps[k] ? 0 : -L;
+    hi[k] = wraps[k] ? n[k] - 1 : n[k] - 1 + L;
   }
   for_each_index(s.dimension, lo, hi, [&](const long* i) {
     bool outside = false;
-    for (int k = 0; k < s.dimension; ++k) outside |= i[k] < 0 || i[k] >= n[k];
+    for (int k = 0; k < s.dimension; ++k) outside |= !wraps[k] && (i[k] < 0 || i[k] >= n[k]);
     if (!outside) return;
     Vec3d p{};
     for (int k = 0; k < s.dimension; ++k) p[k] = s.domain_min[k] + (double(i[k]) + 0.5) * step[k];

@@ -15,6 +15,9 @@ enum class Eos { Tait, Linear };
 enum class TimeStepMode { Cfl, Fixed };
 enum class ObstacleShape { Box, Sphere };  // 2D: "rectangle" and "circle" map to these
 enum class MotionKind { Static, Velocity, Path };
+/// Periodic axes as a bit set (x = 1, y = 2, z = 4), spelled "none", "x", "y", "xy", … in JSON.
+enum class PeriodicAxes { None, X, Y, XY, Z, XZ, YZ, XYZ };
+inline bool axis_is_periodic(PeriodicAxes p, int axis) { return (int(p) >> axis) & 1; }
 
 struct FluidBlock {
   Vec3d min{}, max{};     // m
@@ -52,6 +55,7 @@ struct SimSpec {
   std::string name = "scene";
   int dimension = 3;
   Vec3d domain_min{0, 0, 0}, domain_max{1, 1, 1};  // m, the container walls
+  PeriodicAxes periodic = PeriodicAxes::None;      // axes that wrap (no walls there)
 
   // fluid
   double spacing = 0.02;           // m, initial particle spacing
@@ -92,6 +96,7 @@ struct SimSpec {
   int dfsph_max_iterations = 100;
 
   Vec3d gravity{0, -9.81, 0};      // m/s²
+  Vec3d body_force{0, 0, 0};       // m/s², a further uniform acceleration (a pressure gradient's stand-in)
   std::vector<FluidBlock> fluid_blocks;
   std::vector<ObstacleSpec> obstacles;
   std::vector<EmitterSpec> emitters;
@@ -112,6 +117,7 @@ inline void copy_live_parameters(const SimSpec& from, SimSpec& to) {
   to.dt = from.dt;
   to.max_dt = from.max_dt;
   to.gravity = from.gravity;
+  to.body_force = from.body_force;
   to.pbf_time_step = from.pbf_time_step;
   to.pbf_substeps = from.pbf_substeps;
   to.pbf_iterations = from.pbf_iterations;

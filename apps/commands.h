@@ -8,6 +8,7 @@ namespace rtsph::app {
 void add_run_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);
 void add_scenes_command(CLI::App& app, int& exit_code);
+void add_validate_command(CLI::App& app, int& exit_code);  // hands over to python -m rtsph.validate
 #ifdef RTSPH_HAVE_VIEWER
 void add_view_command(CLI::App& app, int& exit_code);    // apps/viewer/
 void add_render_command(CLI::App& app, int& exit_code);  // apps/viewer/

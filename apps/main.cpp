@@ -28,6 +28,7 @@ int main(int argc, char** argv) {
   rtsph::app::add_run_command(app, exit_code);
   rtsph::app::add_bench_command(app, exit_code);
   rtsph::app::add_scenes_command(app, exit_code);
+  rtsph::app::add_validate_command(app, exit_code);
 #ifdef RTSPH_HAVE_VIEWER
   rtsph::app::add_view_command(app, exit_code);
   rtsph::app::add_render_command(app, exit_code);

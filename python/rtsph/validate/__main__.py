@@ -1,0 +1,63 @@
+"""`python -m rtsph.validate` (what `rtsph validate` runs): the validation cases, a progress line
+per case, and the report. Exit code 0 when every applicable case passes, 1 when one fails,
+2 for bad arguments."""
+from __future__ import annotations
+
+import argparse
+import sys
+import time
+
+from . import CASES, METHODS, run_case
+from .report import write_report
+
+
+def main(argv=None) -> int:
+    ap = argparse.ArgumentParser(prog="rtsph validate", description="Run rtsph's validation cases and write a report.")
+    ap.add_argument("cases", nargs="*", metavar="CASE", help=f"cases to run (default: all): {', '.join(CASES)}")
+    ap.add_argument("--method", default="all", help="wcsph, pbf, dfsph or all (default)")
+    ap.add_argument("--backend", default="cpu", help="cpu (the only backend so far)")
+    lvl = ap.add_mutually_exclusive_group()
+    lvl.add_argument("--quick", action="store_const", const="quick", dest="level", help="coarse sizes (CI; default)")
+    lvl.add_argument("--full", action="store_const", const="full", dest="level", help="report resolution and convergence")
+    ap.add_argument("--out", default="validation", help="output directory (default: ./validation)")
+    ap.add_argument("--threads", type=int, default=0, help="solver threads (0 = all cores)")
+    try:
+        args = ap.parse_args(argv)
+    except SystemExit as e:
+        return 0 if e.code == 0 else 2
+    level = args.level or "quick"
+    bad = [c for c in args.cases if c not in CASES]
+    if bad:
+        print(f"rtsph validate: unknown case {bad[0]!r}; expected one of {', '.join(CASES)}", file=sys.stderr)
+        return 2
+    methods = METHODS if args.method == "all" else (args.method,)
+    if any(m not in METHODS for m in methods):
+        print(f"rtsph validate: --method {args.method!r}: expected wcsph, pbf, dfsph or all", file=sys.stderr)
+        return 2
+    if args.backend != "cpu":
+        print(f"rtsph validate: --backend {args.backend!r}: only the cpu backend exists so far", file=sys.stderr)
+        return 2
+    if args.threads < 0:
+        print("rtsph validate: --threads must be 0 (all cores) or more", file=sys.stderr)
+        return 2
+    results = []
+    t0 = time.perf_counter()
+    for case in args.cases or list(CASES):
+        for m in methods:
+            t = time.perf_counter()
+            print(f"rtsph validate: {case} ({m}, {level}) ...", end="", file=sys.stderr, flush=True)
+            r = run_case(case, m, level, args.threads)
+            results.append(r)
+            status = "n/a" if not r.applicable else ("pass" if r.passed else "FAIL")
+            err = "" if not r.applicable else f" {r.error:.4g} (tolerance {r.tolerance:.4g})"
+            print(f" {status}{err}, {r.particles} particles, {time.perf_counter() - t:.1f} s", file=sys.stderr)
+    wall = time.perf_counter() - t0
+    write_report(args.out, results, level, args.threads, wall)
+    failed = [r for r in results if r.applicable and not r.passed]
+    print(f"rtsph validate: {len(results) - len(failed)}/{len(results)} passed or n/a in {wall:.0f} s; "
+          f"report: {args.out}/report.html", file=sys.stderr)
+    return 1 if failed else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

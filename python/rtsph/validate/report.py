@@ -1,0 +1,129 @@
+"""Writes a validation run: DIR/report.html (self-contained, plots inlined as PNG),
+DIR/summary.json, DIR/<case>_<method>.csv and DIR/<case>.png."""
+from __future__ import annotations
+
+import base64
+import csv
+import datetime
+import html
+import io
+import json
+import os
+import platform
+from typing import Dict, List
+
+from .cases import Result
+
+
+def _plot_case(case: str, results: List[Result]):
+    import matplotlib
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    ran = [r for r in results if r.applicable and r.plot is not None]
+    conv = [r for r in ran if r.convergence]
+    ncols = 1 + (1 if conv else 0)
+    fig, axes = plt.subplots(1, ncols, figsize=(5.2 * ncols, 3.8), squeeze=False)
+    ax = axes[0][0]
+    for r in ran:
+        r.plot(ax, r)
+    handles, labels = ax.get_legend_handles_labels()
+    seen = {}
+    for h, lab in zip(handles, labels):
+        seen.setdefault(lab, h)
+    if seen:
+        ax.legend(seen.values(), seen.keys(), fontsize=8)
+    ax.set_title(case)
+    if conv:
+        ax2 = axes[0][1]
+        for r in conv:
+            h = [c[0] for c in r.convergence]
+            e = [c[1] for c in r.convergence]
+            ax2.loglog(h, e, "o-", label=f"{r.method} (order {r.extra.get('observed_order', float('nan')):.2f})")
+        ax2.set_xlabel("spacing (m)")
+        ax2.set_ylabel("error")
+        ax2.set_title("convergence")
+        ax2.legend(fontsize=8)
+    fig.tight_layout()
+    buf = io.BytesIO()
+    fig.savefig(buf, format="png", dpi=90)
+    plt.close(fig)
+    return buf.getvalue()
+
+
+def _fmt(x: float) -> str:
+    return "n/a" if x != x else f"{100 * x:.2f}%" if abs(x) < 10 else f"{x:.3g}"
+
+
+def write_report(out: str, results: List[Result], level: str, threads: int, wall_s: float) -> None:
+    os.makedirs(out, exist_ok=True)
+    by_case: Dict[str, List[Result]] = {}
+    for r in results:
+        by_case.setdefault(r.case, []).append(r)
+        if r.applicable:
+            cols = list(r.series)
+            with open(os.path.join(out, f"{r.case}_{r.method}.csv"), "w", newline="") as f:
+                w = csv.writer(f)
+                w.writerow(cols)
+                for row in zip(*(r.series[c] for c in cols)):
+                    w.writerow([repr(float(v)) for v in row])
+    meta = {"date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+            "level": level, "threads": threads, "wall_s": wall_s,
+            "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),
+            "cpus": os.cpu_count(), "python": platform.python_version()}
+    summary = {"meta": meta, "passed": all(r.passed or not r.applicable for r in results), "cases": [
+        {"case": r.case, "method": r.method, "applicable": r.applicable, "passed": r.passed,
+         "metric": r.metric, "error": r.error, "tolerance": r.tolerance, "particles": r.particles,
+         "wall_s": r.wall_s, "setup": r.setup, "reference": r.reference, "notes": r.notes,
+         "convergence": r.convergence, "extra": r.extra} for r in results]}
+    with open(os.path.join(out, "summary.json"), "w") as f:
+        json.dump(summary, f, indent=2, default=float)
+
+    methods = sorted({r.method for r in results})
+    rows = []
+    for case, rs in by_case.items():
+        cells = []
+        for m in methods:
+            r = next((x for x in rs if x.method == m), None)
+            if r is None:
+                cells.append("<td></td>")
+            elif not r.applicable:
+                cells.append("<td class=na>n/a</td>")
+            else:
+                cells.append(f"<td class={'pass' if r.passed else 'fail'}>{'pass' if r.passed else 'FAIL'} "
+                             f"{_fmt(r.error)}</td>")
+        rows.append(f"<tr><td><a href='#{case}'>{case}</a></td>{''.join(cells)}</tr>")
+    sections = []
+    for case, rs in by_case.items():
+        png = _plot_case(case, rs)
+        with open(os.path.join(out, f"{case}.png"), "wb") as f:
+            f.write(png)
+        first = rs[0]
+        lines = []
+        for r in rs:
+            if not r.applicable:
+                lines.append(f"<tr><td>{r.method}</td><td colspan=5 class=na>{html.escape(r.notes)}</td></tr>")
+                continue
+            conv = ", ".join(f"{c[0]:.3g} m: {_fmt(c[1])}" for c in r.convergence)
+            if conv:
+                conv += f" (order {r.extra.get('observed_order', float('nan')):.2f})"
+            lines.append(f"<tr><td>{r.method}</td><td class={'pass' if r.passed else 'fail'}>"
+                         f"{'pass' if r.passed else 'FAIL'}</td><td>{_fmt(r.error)} (tolerance {_fmt(r.tolerance)})</td>"
+                         f"<td>{r.particles:,}</td><td>{r.wall_s:.1f} s</td><td>{html.escape(r.notes)} {conv}</td></tr>")
+        sections.append(
+            f"<h2 id='{case}'>{case}</h2><p><b>Set-up:</b> {html.escape(first.setup)}<br>"
+            f"<b>Reference:</b> {html.escape(first.reference)}<br><b>Measured:</b> {html.escape(first.metric)}</p>"
+            f"<img src='data:image/png;base64,{base64.b64encode(png).decode()}'>"
+            "<table><tr><th>method</th><th>result</th><th>error</th><th>particles</th><th>run time</th><th>notes</th></tr>"
+            + "".join(lines) + "</table>")
+    page = f"""<!doctype html><html><head><meta charset="utf-8"><title>rtsph validation</title><style>
+body{{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}} table{{border-collapse:collapse;margin:.5em 0}}
+td,th{{border:1px solid #ccc;padding:3px 8px;font-size:90%}} .pass{{background:#dfd}} .fail{{background:#fdd}}
+.na{{color:#888}} img{{max-width:100%}}</style></head><body>
+<h1>rtsph validation ({level})</h1>
+<p>{html.escape(meta['date'])}, {meta['cpus']} CPUs, {threads or 'all'} solver threads, {wall_s:.0f} s in all.
+Every case: <code>rtsph validate --{level}</code>; the narrative is docs/validation.md.</p>
+<table><tr><th>case</th>{''.join(f'<th>{m}</th>' for m in methods)}</tr>{''.join(rows)}</table>
+{''.join(sections)}</body></html>"""
+    with open(os.path.join(out, "report.html"), "w") as f:
+        f.write(page)

@@ -1,0 +1,59 @@
+"""rtsph validate: cases run, the report is written, exit codes say pass (0), fail (1), bad input (2)."""
+import json
+import os
+import subprocess
+import sys
+
+import pytest
+
+from rtsph import validate
+from rtsph.validate import __main__ as vmain
+from rtsph.validate.cases import Result
+
+
+def test_passing_cases_write_the_report(tmp_path):
+    out = tmp_path / "v"
+    r = subprocess.run([sys.executable, "-m", "rtsph.validate", "poiseuille_2d", "dam_break_2d", "--quick",
+                        "--out", str(out), "--threads", "2"], capture_output=True, text=True, timeout=600)
+    assert r.returncode == 0, r.stderr
+    summary = json.loads((out / "summary.json").read_text())
+    assert summary["passed"] is True and summary["meta"]["level"] == "quick"
+    rows = {(c["case"], c["method"]): c for c in summary["cases"]}
+    assert set(rows) == {(c, m) for c in ("poiseuille_2d", "dam_break_2d") for m in validate.METHODS}
+    assert rows[("poiseuille_2d", "pbf")]["applicable"] is False  # PBF has no laminar viscosity
+    pw = rows[("poiseuille_2d", "wcsph")]
+    assert pw["passed"] and pw["error"] <= pw["tolerance"] == 0.02
+    page = (out / "report.html").read_text()
+    assert "data:image/png;base64," in page and "poiseuille_2d" in page and "n/a" in page
+    assert (out / "poiseuille_2d.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    header = (out / "dam_break_2d_dfsph.csv").read_text().splitlines()[0]
+    assert header == "T,Z"
+    assert "pass" in r.stderr  # a progress line per case
+
+
+def test_a_failing_case_exits_1(tmp_path, monkeypatch):
+    def failing(method, level, threads):
+        r = Result(case="always_fails", method=method, metric="m", error=1.0, tolerance=0.5)
+        r.series = {"x": [0.0, 1.0]}
+        r.plot = lambda ax, res: ax.plot(res.series["x"], res.series["x"])
+        return r
+    monkeypatch.setitem(validate.CASES, "always_fails", failing)
+    assert vmain.main(["always_fails", "--method", "wcsph", "--out", str(tmp_path)]) == 1
+    assert json.loads((tmp_path / "summary.json").read_text())["passed"] is False
+
+
+@pytest.mark.parametrize("args", [["no_such_case"], ["--method", "sph2014"], ["--backend", "gpu"], ["--threads", "-1"],
+                                  ["--no-such-flag"]])
+def test_bad_arguments_exit_2(args, tmp_path):
+    assert vmain.main(args + ["--out", str(tmp_path)]) == 2
+
+
+def test_the_cli_hands_over_to_python(cli, tmp_path):
+    env = dict(os.environ, RTSPH_PYTHON=sys.executable)
+    r = subprocess.run([cli, "validate", "poiseuille_2d", "--method", "dfsph", "--out", str(tmp_path / "v")],
+                       capture_output=True, text=True, env=env, timeout=300)
+    assert r.returncode == 0, r.stderr
+    assert (tmp_path / "v" / "report.html").exists()
+    env["RTSPH_PYTHON"] = str(tmp_path / "no_python")
+    r = subprocess.run([cli, "validate"], capture_output=True, text=True, env=env, timeout=60)
+    assert r.returncode == 2 and "setup-python.sh" in r.stderr and r.stderr.count("\n") == 1

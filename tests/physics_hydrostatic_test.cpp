@@ -32,7 +32,8 @@ Bottom bottom_pressure(const Simulation& sim, double spacing, double rho0, doubl
 }
 
 void settles_to_hydrostatic(int dim, double width, double height, double spacing,
-                            const std::string& method = "wcsph", double tolerance = 0.05) {
+                            const std::string& method = "wcsph", double tolerance = 0.05,
+                            double t_end = 0) {
   SimSpec spec = test::tank(dim, width, height, spacing);
   spec.method = method;
   // Damp the acoustic oscillation that the sudden start excites, so the test sees the settled
@@ -42,10 +43,11 @@ void settles_to_hydrostatic(int dim, double width, double height, double spacing
   const double rho0 = spec.rest_density, g = 9.81;
   double ke_early = 0, ratio_sum = 0;
   int samples = 0;
-  const double t_end = dim == 2 ? 1.5 : 1.0;
+  if (t_end <= 0) t_end = dim == 2 ? 1.5 : 1.0;
   while (sim->time() < t_end) {
     sim->step();
-    if (sim->time() > 0.2 && sim->time() < 0.3) ke_early = std::max(ke_early, sim->stats().kinetic_energy_j);
+    // The peak of the start-up motion: early for WCSPH's acoustic slosh, later for DFSPH.
+    if (sim->time() > 0.2 && sim->time() < t_end - 0.3) ke_early = std::max(ke_early, sim->stats().kinetic_energy_j);
     if (sim->time() > t_end - 0.3 && sim->step_count() % 20 == 0) {
       ratio_sum += bottom_pressure(*sim, spacing, rho0, g).ratio;
       ++samples;
@@ -55,9 +57,9 @@ void settles_to_hydrostatic(int dim, double width, double height, double spacing
   const double ratio = ratio_sum / samples;
   const Bottom b = bottom_pressure(*sim, spacing, rho0, g);
   std::printf("%s %dD tank: bottom p / rho g (H - y) = %.4f (time-averaged), surface %.4f m, KE %.3g J "
-              "(early %.3g J)\n", method.c_str(), dim, ratio, b.surface, st.kinetic_energy_j, ke_early);
+              "(peak %.3g J)\n", method.c_str(), dim, ratio, b.surface, st.kinetic_energy_j, ke_early);
   EXPECT_NEAR(ratio, 1.0, tolerance);
-  EXPECT_LT(st.kinetic_energy_j, 0.25 * ke_early);  // the slosh decays
+  EXPECT_LT(st.kinetic_energy_j, 0.25 * ke_early);  // the slosh decays from its peak
   EXPECT_EQ(st.particles_put_back, 0u);
   // No particle leaves the fluid region: the column only compresses slightly.
   const auto v = sim->fluid();
@@ -73,9 +75,13 @@ void settles_to_hydrostatic(int dim, double width, double height, double spacing
 
 TEST(Hydrostatic, Tank2DSettlesToRhoGH) { settles_to_hydrostatic(2, 1.0, 1.0, 0.025); }
 TEST(Hydrostatic, Tank3DSettlesToRhoGH) { settles_to_hydrostatic(3, 0.3, 0.4, 0.025); }
-// DFSPH settles too. Issue 9 asks for 1%; this run measures 1.6% (docs/validation.md), so the
-// test holds it to WCSPH's 5% until the wall model improves.
+// DFSPH settles too. In 3D it meets issue 9's 1% (measured 0.993 once the walls' hydrostatic
+// pressure is restored, ForceTerms::wall_hydrostatic; 1.080 and a kinetic-energy plateau
+// before). The 2D tank measures 3.8% (docs/validation.md), so that test holds it to WCSPH's 5%.
 TEST(Hydrostatic, Dfsph2DSettlesToRhoGH) { settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "dfsph", 0.05); }
+// DFSPH starts nearly at rest (its solve holds ρ0 from the first step) and its small start-up
+// slosh takes longer to die out than WCSPH's acoustic one: 3 s.
+TEST(Hydrostatic, Dfsph3DSettlesToRhoGH) { settles_to_hydrostatic(3, 0.3, 0.4, 0.025, "dfsph", 0.01, 3.0); }
 
 }  // namespace
 }  // namespace rtsph

@@ -33,7 +33,7 @@ void Dfsph<D>::step() {
   {
     ScopedTimer timer(times_.forces_s);
     this->compute_inverse_density();
-    this->accelerations({.viscosity = true, .external = true});  // a_nonp            (line 4)
+    this->accelerations({.viscosity = true, .external = true, .wall_hydrostatic = true});  // a_nonp            (line 4)
   }
   const double dt = choose_time_step();                           // CFL              (line 5)
   {

@@ -95,6 +95,8 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
   Real g[D];
   const Vec3d accel = external_acceleration();
   for (int k = 0; k < D; ++k) g[k] = Real(accel[k]);
+  const bool hydro = terms.wall_hydrostatic;
+  const Real inv_rho0 = Real(1.0 / prm_.rho0);
   const Brush brush = brush_;
   const Vec<D> brush_c = truncate<D>(brush.center);
 
@@ -151,6 +153,13 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
                 const f8 beta = simd::select(depth > 0.0f, 1.0f + depth * simd::rcp(simd::select(di > dmin, di, f8{} + dmin)),
                                              f8{} + 1.0f);
                 lam = simd::select(m, beta * w * nu * (2.0f * iri) * G * r2 * inv, f8{});
+              }
+              if constexpr (kExternal) {
+                if (hydro) {  // −Ψ_b (g·(x_b − xᵢ)/ρ0) ∇W_ib, with x_b − xᵢ = −d
+                  f8 gd = f8{};
+                  for (int k = 0; k < D; ++k) gd += g[k] * d[k];
+                  pib -= gd * inv_rho0;
+                }
               }
               const f8 s = simd::select(m, -w * pib * G, f8{});
               for (int k = 0; k < D; ++k) acc[k] += kViscosity ? s * d[k] + lam * vib[k] : s * d[k];

@@ -20,7 +20,7 @@ def _plot_case(case: str, results: List[Result]):
     matplotlib.use("Agg")
     import matplotlib.pyplot as plt
 
-    ran = [r for r in results if r.applicable and r.plot is not None]
+    ran = [r for r in results if r.applicable and r.plot is not None and r.series]
     conv = [r for r in ran if r.convergence]
     ncols = 1 + (1 if conv else 0)
     fig, axes = plt.subplots(1, ncols, figsize=(5.2 * ncols, 3.8), squeeze=False)

@@ -82,6 +82,8 @@ TEST(Hydrostatic, Dfsph2DSettlesToRhoGH) { settles_to_hydrostatic(2, 1.0, 1.0, 0
 // DFSPH starts nearly at rest (its solve holds ρ0 from the first step) and its small start-up
 // slosh takes longer to die out than WCSPH's acoustic one: 3 s.
 TEST(Hydrostatic, Dfsph3DSettlesToRhoGH) { settles_to_hydrostatic(3, 0.3, 0.4, 0.025, "dfsph", 0.01, 3.0); }
+TEST(Hydrostatic, Pbf2DSettlesToRhoGH) { settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "pbf", 0.03, 3.0); }
+TEST(Hydrostatic, Pbf3DSettlesToRhoGH) { settles_to_hydrostatic(3, 0.3, 0.4, 0.025, "pbf", 0.03, 3.0); }
 
 }  // namespace
 }  // namespace rtsph

@@ -86,7 +86,6 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
   const PairArrays<D> pa = pair_arrays();
   [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
   [[maybe_unused]] const Real* const psi = pa.psi;
-  const uint32_t* const cells = pa.cells;
   const Real* Pb = terms.boundary_pressure;
   const bool mirror = terms.mirror_boundary;
   const Real* rho = fluid_.rho.data();
@@ -127,9 +126,15 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
               const f8 s = simd::select(m, -mass * pij * G, f8{});
               for (int k = 0; k < D; ++k) acc[k] += kViscosity ? s * d[k] + lam * vij[k] : s * d[k];
             });
-        // Boundary neighbours mirror the fluid particle's pressure and density (ρ_b = ρᵢ).
+        }
+        // Boundary neighbours mirror the fluid particle's pressure and density (ρ_b = ρᵢ). The
+        // cell comes from the position, not from the last sort: PBF calls this before it sorts,
+        // after its corrections moved the particles (the same cell whenever memory is sorted).
+        if (kPressure || kViscosity || hydro) {
+        Vec<D> pos;
+        for (int k = 0; k < D; ++k) pos[k] = xi[k];
         for_each_candidate_batch<D>(
-            ctx_.boundary_grid, cells[i], bx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
+            ctx_.boundary_grid, ctx_.boundary_grid.cell_of(pos), bx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
               const f8 G = K.grad_factor(r2);
               f8 vib[D], vr = f8{};
               for (int k = 0; k < D; ++k) {

@@ -70,8 +70,8 @@ struct ForceTerms {
   bool mirror_boundary = false;             //   P_b = Pᵢ (true), or 0 (null, false)
   bool viscosity = true;   // Morris laminar + Monaghan artificial viscosity, fluid and walls
   bool external = true;    // gravity and the brush
-  // With `external` and `viscosity` (the wall loop runs only then): the hydrostatic part of the
-  // walls' pressure for a method whose solve mirrors Pᵢ onto the wall samples (DFSPH). Mirroring gives a wall sample the particle's own
+  // With `external`: the hydrostatic part of the walls' pressure for methods whose solve mirrors
+  // Pᵢ (DFSPH's κ, PBF's λ) onto the wall samples. Mirroring gives a wall sample the particle's own
   // pressure at every height, so a particle beside a vertical wall gets no support from it: the
   // truncated fluid sum alone under-supports it, and the water sinks along the walls and rises
   // in the middle, a circulation that never settles. Adami et al. 2012's p_b = pᵢ + ρᵢ g·(x_b − xᵢ)

@@ -48,7 +48,7 @@ void Pbf<D>::step() {
   const double dt = choose_time_step();
   {
     ScopedTimer timer(times_.integrate_s);
-    this->accelerations({.viscosity = false});  // gravity + brush                     (line 2)
+    this->accelerations({.viscosity = false, .wall_hydrostatic = true});  // gravity + brush                     (line 2)
     this->kick(dt);                              // vᵢ ⇐ vᵢ + Δt f_ext(xᵢ)
     this->drift(dt);                             // x*ᵢ ⇐ xᵢ + Δt vᵢ, wall contact   (line 3)
     this->advance_scene(this->time_ + dt, dt);   // obstacles, emitters, put-back

@@ -1,5 +1,7 @@
 #include "core/gravity_direct.h"
 
+#include <algorithm>
+
 #include "core/gravity_kernel.h"
 
 namespace rtsph {
@@ -19,12 +21,18 @@ void row(const GravitySources<D>& s, std::size_t i, double G, float* const acc[D
   DoubleLanes sum[D], phi;
   const std::size_t full = s.n / simd::kWidth * simd::kWidth;
   const i8 lanes = simd::lane_index();
-  for (std::size_t j = 0; j < full; j += simd::kWidth) {
-    f8 xj[D];
-    for (int a = 0; a < D; ++a) xj[a] = simd::load(s.x[a] + j);
-    const i8 valid = lanes != int(i - j);  // the self-pair lane when i is in this batch
-    gravity_detail::accumulate_pairs<D, Pot>(xi, xj, simd::load(s.m + j), hi, simd::load(s.h + j),
-                                             valid, sum, &phi);
+  for (std::size_t j0 = 0; j0 < full; j0 += gravity_detail::kBlock * simd::kWidth) {
+    const std::size_t j1 = std::min(full, j0 + gravity_detail::kBlock * simd::kWidth);
+    f8 part[D] = {}, ppart = {};
+    for (std::size_t j = j0; j < j1; j += simd::kWidth) {
+      f8 xj[D];
+      for (int a = 0; a < D; ++a) xj[a] = simd::load(s.x[a] + j);
+      const i8 valid = lanes != int(i - j);  // the self-pair lane when i is in this batch
+      gravity_detail::accumulate_pairs<D, Pot>(xi, xj, simd::load(s.m + j), hi,
+                                               simd::load(s.h + j), valid, part, &ppart);
+    }
+    for (int a = 0; a < D; ++a) sum[a].add(part[a]);
+    if constexpr (Pot) phi.add(ppart);
   }
   if (full < s.n) {
     alignas(32) float x[D][simd::kWidth] = {}, m[simd::kWidth] = {}, h[simd::kWidth];
@@ -34,11 +42,13 @@ void row(const GravitySources<D>& s, std::size_t i, double G, float* const acc[D
       m[j - full] = s.m[j];
       h[j - full] = s.h[j];
     }
-    f8 xj[D];
+    f8 xj[D], part[D] = {}, ppart = {};
     for (int a = 0; a < D; ++a) xj[a] = simd::load(x[a]);
     const i8 valid = (lanes < int(s.n - full)) & (lanes != int(i - full));
-    gravity_detail::accumulate_pairs<D, Pot>(xi, xj, simd::load(m), hi, simd::load(h), valid, sum,
-                                             &phi);
+    gravity_detail::accumulate_pairs<D, Pot>(xi, xj, simd::load(m), hi, simd::load(h), valid, part,
+                                             &ppart);
+    for (int a = 0; a < D; ++a) sum[a].add(part[a]);
+    if constexpr (Pot) phi.add(ppart);
   }
   for (int a = 0; a < D; ++a) acc[a][i] = float(G * sum[a].sum());
   if constexpr (Pot) pot[i] = float(G * phi.sum());

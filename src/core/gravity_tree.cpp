@@ -41,7 +41,7 @@ struct Box {
 std::size_t GravityTree::memory_bytes() const {
   std::size_t b = keys_.bytes() + keys_tmp_.bytes() + order_.bytes() + order_tmp_.bytes() +
                   m_.bytes() + h_.bytes() + nodes_.capacity() * sizeof(Node) +
-                  groups_.capacity() * sizeof(uint32_t);
+                  groups_.capacity() * sizeof(Group);
   for (const auto& x : x_) b += x.bytes();
   for (const auto& s : scratch_) b += s.bytes();
   return b;
@@ -122,12 +122,35 @@ void GravityTree::build(const GravitySources<3>& src, const ThreadPool& pool, Op
   });
   build_node(0, uint32_t(n_), 0, false);
   compute_moments();
+  pool.parallel_for(groups_.size(), [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) {
+      Group& g = groups_[k];
+      float lo[3], hi[3], hmax = 0;
+      for (int a = 0; a < 3; ++a) lo[a] = hi[a] = x_[a][g.begin];
+      for (uint32_t i = g.begin; i < g.begin + g.count; ++i) {
+        for (int a = 0; a < 3; ++a) {
+          lo[a] = std::min(lo[a], x_[a][i]);
+          hi[a] = std::max(hi[a], x_[a][i]);
+        }
+        hmax = std::max(hmax, h_[i]);
+      }
+      for (int a = 0; a < 3; ++a) {
+        g.centre[a] = 0.5f * (lo[a] + hi[a]);
+        g.half[a] = 0.5f * (hi[a] - lo[a]);
+      }
+      g.hmax = hmax;
+    }
+  }, 256);
 }
 
 // Depth-first: a node, then its children's subtrees, then `next` points past them. A range
 // whose keys all share the octant at this level is not given a node of its own (no one-child
 // chains); it descends to the first level where it splits.
-uint32_t GravityTree::build_node(uint32_t begin, uint32_t end, int level, bool in_group) {
+// Groups: a node of more than group_size particles packs runs of its small children (adjacent
+// octants of one cell, contiguous in Morton order) into groups of up to group_size particles,
+// so groups stay full even where the tree splits unevenly. `grouped`: an enclosing group holds
+// these particles already.
+uint32_t GravityTree::build_node(uint32_t begin, uint32_t end, int level, bool grouped) {
   const uint32_t self = uint32_t(nodes_.size());
   nodes_.push_back(Node{});
   nodes_[self].begin = begin;
@@ -136,9 +159,16 @@ uint32_t GravityTree::build_node(uint32_t begin, uint32_t end, int level, bool i
     while (level < kLevels && digit(keys_[begin], level) == digit(keys_[end - 1], level)) ++level;
   // A leaf: few particles, or particles that share the finest Morton cell (any number).
   const bool leaf = end - begin <= opt_.leaf_size || level == kLevels;
-  const bool group = !in_group && (end - begin <= opt_.group_size || leaf);
-  if (group) groups_.push_back(self);
+  if (!grouped && (end - begin <= opt_.group_size || leaf)) {  // the root, or a crowded cell
+    groups_.push_back(Group{begin, end - begin});
+    grouped = true;
+  }
   if (!leaf) {
+    uint32_t run = begin;  // start of the pending run of small children
+    auto flush = [&](uint32_t upto) {
+      if (upto > run) groups_.push_back(Group{run, upto - run});
+      run = upto;
+    };
     // Keys in [begin, end) share the digits above `level`, so this level's digit is sorted.
     for (uint32_t b = begin; b < end;) {
       const int d = digit(keys_[b], level);
@@ -146,9 +176,13 @@ uint32_t GravityTree::build_node(uint32_t begin, uint32_t end, int level, bool i
           std::partition_point(keys_.data() + b, keys_.data() + end,
                                [&](uint64_t k) { return digit(k, level) == d; }) -
           keys_.data());
-      build_node(b, e, level + 1, in_group || group);
+      const bool small = e - b <= opt_.group_size;
+      if (!grouped && (!small || e - run > opt_.group_size)) flush(b);
+      build_node(b, e, level + 1, grouped || small);
+      if (!grouped && !small) run = e;
       b = e;
     }
+    if (!grouped) flush(end);
   }
   nodes_[self].next = uint32_t(nodes_.size());
   return self;

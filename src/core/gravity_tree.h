@@ -7,16 +7,17 @@
 // depth-first order with a skip pointer (`next`), so traversal needs no stack. Moments bottom-up:
 // mass, centre of mass and the traceless quadrupole Q = Σ m (3 d dᵀ - |d|² I) about it.
 //
-// Walk: per group (a node of at most `group_size` particles), one interaction list serves all
-// its particles. A node is accepted as a multipole when (a) the distance from its centre of
-// mass to the group's box exceeds l/θ + δ (l: side of the node's box, δ: offset of the centre
-// of mass from the box centre; Barnes 1994's guard against off-centre mass) and (b) the gap
-// between the node's box and the group's box exceeds 2·max(h) of both, so every softened pair
-// (r < 2 max(hᵢ, hⱼ)) is summed particle by particle with the symmetric softening, exactly as in
-// direct summation. Otherwise it is opened; opened leaves add their particles to the list.
-// Each particle sums its lists in a fixed order in double: bitwise identical for any thread
-// count. Buffers grow geometrically and are reused: no allocation after the first build of a
-// given size.
+// Walk: per group (up to `group_size` particles of one node or of adjacent sibling nodes), one
+// interaction list serves all its particles. A node is accepted as a multipole when (a) the
+// distance from its centre of mass to the group's box exceeds max(l/θ, δ + (√3/2)·l) (l: largest
+// side of the node's box, δ: offset of the centre of mass from the box centre; the second term
+// keeps every target outside the node however off-centre its mass, cf. Barnes 1994) and (b) the
+// gap between the node's box and the group's box exceeds 2·max(h) of both, so every softened
+// pair (r < 2 max(hᵢ, hⱼ)) is summed particle by particle with the symmetric softening, exactly
+// as in direct summation. Otherwise it is opened; opened leaves add their particles to the list.
+// Each particle sums its lists in a fixed order (float blocks into double): bitwise identical
+// for any thread count. Buffers grow geometrically and are reused: no allocation after the
+// first build of a given size.
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -30,16 +31,26 @@ namespace rtsph {
 class GravityTree {
  public:
   struct Options {
-    unsigned leaf_size = 8;    // particles per leaf at most (unless they share a Morton cell)
-    unsigned group_size = 32;  // particles sharing one interaction list at most
+    // Measured on a Plummer sphere at 10⁴-10⁵ (docs/performance.md): leaves of 8-16 and groups
+    // of 32-64 are within noise of each other; larger groups share a walk among more particles
+    // but lengthen every particle's list.
+    unsigned leaf_size = 16;   // particles per leaf at most (unless they share a Morton cell)
+    unsigned group_size = 64;  // particles sharing one interaction list at most
   };
   struct Node {
     float com[3], mass;
     float quad[6];            // xx, xy, xz, yy, yz, zz, about com
     float centre[3], half[3];  // tight box of the node's particles
     float hmax, size, offset;  // max h, largest box side l, |com - centre| = δ
+    float open2;               // squared opening radius for the last accelerations()' θ
     uint32_t begin, count;     // particle range in sorted order
     uint32_t next;             // first node after this subtree; next == own index + 1: a leaf
+  };
+
+  /// Particles [begin, begin + count) in Morton order share one interaction list.
+  struct Group {
+    uint32_t begin, count;
+    float centre[3] = {}, half[3] = {}, hmax = 0;  // tight box and max h of the particles
   };
 
   /// Builds the tree of `src` (3D positions, masses, h > 0). The arrays must stay valid until
@@ -77,10 +88,10 @@ class GravityTree {
       return b;
     }
   };
-  void walk_group(uint32_t group, float theta, Scratch& s) const;
+  void walk_group(const Group& g, Scratch& s) const;
   template <bool Pot>
-  void sum_group(uint32_t group, double G, const Scratch& s, float* const acc[3], float* pot) const;
-  uint32_t build_node(uint32_t begin, uint32_t end, int level, bool in_group);
+  void sum_group(const Group& g, double G, const Scratch& s, float* const acc[3], float* pot) const;
+  uint32_t build_node(uint32_t begin, uint32_t end, int level, bool grouped);
   void compute_moments();
   void sort_keys(std::size_t n);
 
@@ -90,7 +101,7 @@ class GravityTree {
   AlignedArray<uint32_t> order_, order_tmp_;
   AlignedArray<float> x_[3], m_, h_;  // particles in Morton order
   std::vector<Node> nodes_;
-  std::vector<uint32_t> groups_;
+  std::vector<Group> groups_;
   std::vector<Scratch> scratch_;
   std::vector<uint32_t> radix_count_;
   double mean_nodes_ = 0, mean_parts_ = 0;

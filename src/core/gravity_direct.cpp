@@ -17,7 +17,8 @@ template <int D, bool Pot>
 void row(const GravitySources<D>& s, std::size_t i, double G, float* const acc[D], float* pot) {
   f8 xi[D];
   for (int a = 0; a < D; ++a) xi[a] = simd::splat(s.x[a][i]);
-  const f8 hi = simd::splat(s.h[i]);
+  // 1/h exactly (IEEE division) on both sides of a pair, so the pair term is antisymmetric.
+  const f8 inv_hi = simd::splat(1.0f / s.h[i]);
   DoubleLanes sum[D], phi;
   const std::size_t full = s.n / simd::kWidth * simd::kWidth;
   const i8 lanes = simd::lane_index();
@@ -28,8 +29,8 @@ void row(const GravitySources<D>& s, std::size_t i, double G, float* const acc[D
       f8 xj[D];
       for (int a = 0; a < D; ++a) xj[a] = simd::load(s.x[a] + j);
       const i8 valid = lanes != int(i - j);  // the self-pair lane when i is in this batch
-      gravity_detail::accumulate_pairs<D, Pot>(xi, xj, simd::load(s.m + j), hi,
-                                               simd::load(s.h + j), valid, part, &ppart);
+      gravity_detail::accumulate_pairs<D, Pot>(xi, xj, simd::load(s.m + j), inv_hi,
+                                               1.0f / simd::load(s.h + j), valid, part, &ppart);
     }
     for (int a = 0; a < D; ++a) sum[a].add(part[a]);
     if constexpr (Pot) phi.add(ppart);
@@ -45,8 +46,8 @@ void row(const GravitySources<D>& s, std::size_t i, double G, float* const acc[D
     f8 xj[D], part[D] = {}, ppart = {};
     for (int a = 0; a < D; ++a) xj[a] = simd::load(x[a]);
     const i8 valid = (lanes < int(s.n - full)) & (lanes != int(i - full));
-    gravity_detail::accumulate_pairs<D, Pot>(xi, xj, simd::load(m), hi, simd::load(h), valid, part,
-                                             &ppart);
+    gravity_detail::accumulate_pairs<D, Pot>(xi, xj, simd::load(m), inv_hi, 1.0f / simd::load(h),
+                                             valid, part, &ppart);
     for (int a = 0; a < D; ++a) sum[a].add(part[a]);
     if constexpr (Pot) phi.add(ppart);
   }

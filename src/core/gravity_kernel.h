@@ -95,14 +95,15 @@ struct DoubleLanes {
   }
 };
 
-/// Accumulates the softened pull of eight sources (positions xj, masses mj, smoothing lengths
-/// hj) on one target at xi with hᵢ into the float block sums acc (and pot), lanes where
-/// `valid` is false contributing nothing. `Pot` adds the symmetric softened potential. Newtonian lanes cost one rsqrt; the softened pieces are
-/// evaluated only when a lane is inside either support (2·max(hᵢ, hⱼ)).
+/// Accumulates the softened pull of eight sources (positions xj, masses mj, inverse smoothing
+/// lengths inv_hj) on one target at xi with 1/hᵢ into the float block sums acc (and pot),
+/// lanes where `valid` is false contributing nothing. `Pot` adds the symmetric softened
+/// potential. Newtonian lanes cost one rsqrt; the softened pieces are evaluated only when a
+/// lane is inside either support (r < 2·max(hᵢ, hⱼ)).
 template <int D, bool Pot>
 inline void accumulate_pairs(const simd::f8* xi, const simd::f8* xj, simd::f8 mj,
-                             simd::f8 hi, simd::f8 hj, simd::i8 valid,
-                             simd::f8* acc, simd::f8* pot) {
+                             simd::f8 inv_hi, simd::f8 inv_hj, simd::i8 valid, simd::f8* acc,
+                             simd::f8* pot) {
   simd::f8 d[D];
   simd::f8 r2 = simd::f8{};
   for (int a = 0; a < D; ++a) {
@@ -113,10 +114,9 @@ inline void accumulate_pairs(const simd::f8* xi, const simd::f8* xj, simd::f8 mj
   // no lane holds inf or NaN, r stays exactly 0 and the softened inner piece (h > 0) applies.
   const simd::f8 inv_r = simd::rsqrt(r2 > 0.0f ? r2 : simd::splat(1.0f));
   const simd::f8 inv_r3 = inv_r * inv_r * inv_r, r = r2 * inv_r;
-  const simd::f8 hmax = hi > hj ? hi : hj;  // the larger support decides
+  const simd::f8 inv_hmin = inv_hi < inv_hj ? inv_hi : inv_hj;  // the larger support decides
   simd::f8 g = inv_r3, phi = -inv_r;
-  if (simd::any(valid & (r < 2.0f * hmax))) {
-    const simd::f8 inv_hi = 1.0f / hi, inv_hj = 1.0f / hj;
+  if (simd::any(valid & (r * inv_hmin < 2.0f))) {
     g = 0.5f * (softened_force_over_r(r, inv_hi, inv_r3) + softened_force_over_r(r, inv_hj, inv_r3));
     if constexpr (Pot)
       phi = 0.5f * (softened_potential(r, inv_hi, -inv_r) + softened_potential(r, inv_hj, -inv_r));

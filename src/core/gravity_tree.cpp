@@ -40,7 +40,8 @@ struct Box {
 
 std::size_t GravityTree::memory_bytes() const {
   std::size_t b = keys_.bytes() + keys_tmp_.bytes() + order_.bytes() + order_tmp_.bytes() +
-                  m_.bytes() + h_.bytes() + nodes_.capacity() * sizeof(Node) +
+                  m_.bytes() + h_.bytes() + inv_h_.bytes() + nodes_.capacity() * sizeof(Node) +
+                  walk_.capacity() * sizeof(WalkNode) + multipoles_.capacity() * sizeof(Multipole) +
                   groups_.capacity() * sizeof(Group);
   for (const auto& x : x_) b += x.bytes();
   for (const auto& s : scratch_) b += s.bytes();
@@ -83,7 +84,7 @@ void GravityTree::build(const GravitySources<3>& src, const ThreadPool& pool, Op
   if (n_ == 0) return;
   for (auto* a : {&keys_, &keys_tmp_}) a->resize(n_);
   for (auto* a : {&order_, &order_tmp_}) a->resize(n_);
-  for (auto* a : {&x_[0], &x_[1], &x_[2], &m_, &h_}) a->resize(n_);
+  for (auto* a : {&x_[0], &x_[1], &x_[2], &m_, &h_, &inv_h_}) a->resize(n_);
 
   constexpr float kInf = std::numeric_limits<float>::infinity();
   const Box box = pool.parallel_reduce(n_, Box{{kInf, kInf, kInf}, {-kInf, -kInf, -kInf}},
@@ -118,10 +119,19 @@ void GravityTree::build(const GravitySources<3>& src, const ThreadPool& pool, Op
       for (int a = 0; a < 3; ++a) x_[a][i] = src.x[a][j];
       m_[i] = src.m[j];
       h_[i] = src.h[j];
+      inv_h_[i] = 1.0f / src.h[j];  // IEEE division, as gravity_direct: the same pair terms
     }
   });
   build_node(0, uint32_t(n_), 0, false);
   compute_moments();
+  multipoles_.resize(nodes_.size());
+  for (std::size_t k = 0; k < nodes_.size(); ++k) {
+    const Node& nd = nodes_[k];
+    float* v = multipoles_[k].v;
+    for (int a = 0; a < 3; ++a) v[a] = nd.com[a];
+    v[3] = nd.mass;
+    for (int t = 0; t < 6; ++t) v[4 + t] = nd.quad[t];
+  }
   pool.parallel_for(groups_.size(), [&](std::size_t b, std::size_t e) {
     for (std::size_t k = b; k < e; ++k) {
       Group& g = groups_[k];

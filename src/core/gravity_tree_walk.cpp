@@ -34,9 +34,9 @@ void GravityTree::walk_group(const Group& g, Scratch& s) const {
   const float zero[3] = {0, 0, 0};
   s.node_ids.clear();
   s.leaf_ids.clear();
-  const uint32_t nn = uint32_t(nodes_.size());
+  const uint32_t nn = uint32_t(walk_.size());
   for (uint32_t k = 0; k < nn;) {
-    const Node& nd = nodes_[k];
+    const WalkNode& nd = walk_[k];
     // Open (a) while the boxes come within 2·max(h): softened pairs are summed particle by
     // particle (this also opens every node that contains or touches the group); (b) while the
     // group's nearest point lies within the node's opening radius around its com.
@@ -57,10 +57,8 @@ void GravityTree::walk_group(const Group& g, Scratch& s) const {
   for (auto& a : s.node) a.resize(std::max(a.size(), np));
   for (std::size_t l = 0; l < np; ++l) {
     if (l < nodes) {
-      const Node& nd = nodes_[s.node_ids[l]];
-      for (int a = 0; a < 3; ++a) s.node[a][l] = nd.com[a];
-      s.node[3][l] = nd.mass;
-      for (int t = 0; t < 6; ++t) s.node[4 + t][l] = nd.quad[t];
+      const float* v = multipoles_[s.node_ids[l]].v;
+      for (int t = 0; t < 10; ++t) s.node[t][l] = v[t];
     } else {
       for (int a = 0; a < 3; ++a) s.node[a][l] = kFar;
       for (int t = 3; t < 10; ++t) s.node[t][l] = 0;
@@ -76,7 +74,7 @@ void GravityTree::walk_group(const Group& g, Scratch& s) const {
     for (uint32_t i = nodes_[k].begin, e = i + nodes_[k].count; i < e; ++i, ++l) {
       for (int a = 0; a < 3; ++a) s.part[a][l] = x_[a][i];
       s.part[3][l] = m_[i];
-      s.part[4][l] = h_[i];
+      s.part[4][l] = inv_h_[i];
       s.index[l] = int32_t(i);
     }
   }
@@ -123,7 +121,7 @@ void GravityTree::sum_group(const Group& g, double G, const Scratch& s, float* c
       for (int a = 0; a < 3; ++a) sum[a].add(part[a]);
       if constexpr (Pot) phi.add(ppart);
     }
-    const f8 hi = simd::splat(h_[t]);
+    const f8 inv_hi = simd::splat(inv_h_[t]);
     const i8 self = i8{} + int32_t(t);
     for (std::size_t b0 = 0; b0 < pb; b0 += gravity_detail::kBlock * simd::kWidth) {
       const std::size_t b1 = std::min(pb, b0 + gravity_detail::kBlock * simd::kWidth);
@@ -134,7 +132,7 @@ void GravityTree::sum_group(const Group& g, double G, const Scratch& s, float* c
         i8 idx;
         __builtin_memcpy(&idx, s.index.data() + b, sizeof idx);
         const i8 valid = (idx != self) & (idx >= 0);
-        gravity_detail::accumulate_pairs<3, Pot>(xi, xj, simd::load(s.part[3].data() + b), hi,
+        gravity_detail::accumulate_pairs<3, Pot>(xi, xj, simd::load(s.part[3].data() + b), inv_hi,
                                                  simd::load(s.part[4].data() + b), valid, part,
                                                  &ppart);
       }
@@ -160,10 +158,23 @@ void GravityTree::accelerations(double G, double theta, float* const acc[3], flo
   // of the node's box, δ + (√3/2)·l, so no accepted node contains a target however far its
   // mass sits off-centre (the failure Barnes 1994 and Salmon & Warren 1994 point out).
   const float inv_theta = theta > 0 ? float(1.0 / theta) : 0.0f;
-  for (Node& nd : nodes_) {
-    const float r_open = std::max(nd.size * inv_theta, nd.offset + 0.8660254f * nd.size);
-    nd.open2 = theta > 0 ? r_open * r_open : std::numeric_limits<float>::infinity();
-  }
+  walk_.resize(nodes_.size());
+  pool.parallel_for(nodes_.size(), [&](std::size_t b, std::size_t e) {
+    for (std::size_t k = b; k < e; ++k) {
+      const Node& nd = nodes_[k];
+      WalkNode& w = walk_[k];
+      const float r_open = std::max(nd.size * inv_theta, nd.offset + 0.8660254f * nd.size);
+      w.open2 = theta > 0 ? r_open * r_open : std::numeric_limits<float>::infinity();
+      for (int a = 0; a < 3; ++a) {
+        w.centre[a] = nd.centre[a];
+        w.half[a] = nd.half[a];
+        w.com[a] = nd.com[a];
+      }
+      w.hmax = nd.hmax;
+      w.mass = nd.mass;
+      w.next = nd.next;
+    }
+  });
   pool.parallel_for(chunks, [&](std::size_t cb, std::size_t ce) {
     for (std::size_t c = cb; c < ce; ++c) {
       Scratch& s = scratch_[c];

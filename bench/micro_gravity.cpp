@@ -19,14 +19,15 @@ namespace rtsph {
 namespace {
 
 // Plummer sphere, scale radius 1, total mass 1, truncated at 20; h ∝ ρ^(-1/3) with ~50
-// neighbours inside 2h near the centre, as adaptive SPH would set it.
+// neighbours inside 2h, as adaptive SPH would set it: the central number density is
+// 3n/(4π), so (4/3)π(2h₀)³ · 3n/(4π) = 50 gives h₀ = ½ (50/n)^(1/3).
 struct Plummer {
   std::vector<float> x[3], m, h, a[3], pot;
   explicit Plummer(std::size_t n) {
     std::mt19937_64 rng(1);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     std::normal_distribution<double> g;
-    const double h0 = 0.5 * std::cbrt(4.0 * 3.14159265 / (3.0 * double(n)));
+    const double h0 = 0.5 * std::cbrt(50.0 / double(n));
     while (m.size() < n) {
       const double r = 1.0 / std::sqrt(std::pow(u(rng), -2.0 / 3.0) - 1.0);
       if (!(r < 20)) continue;

@@ -67,8 +67,10 @@ double rel_rms_pot(const Field& got, const Field& ref) {
   return std::sqrt(e / s);
 }
 
-test::Cloud sphere() { return test::uniform_sphere(4000, 1.0, 1.0, 0.04, 0.06, 21); }
-test::Cloud clustered() { return test::plummer(4000, 1.0, 1.0, 0.03, 22); }
+// Smoothing lengths as SPH sets them: ~50 neighbours within 2h (uniform: n·(4/3)π(2h)³/V;
+// Plummer: at the centre, h growing outward with the spacing).
+test::Cloud sphere() { return test::uniform_sphere(4000, 1.0, 1.0, 0.10, 0.13, 21); }
+test::Cloud clustered() { return test::plummer(4000, 1.0, 1.0, 0.12, 22); }
 
 // Issue 14's bound at θ = 0.5, and the error falls monotonically as θ shrinks (0.9 → 0.3);
 // at θ = 0 every node is opened, so the tree sums exactly the pairs of direct summation: equal

@@ -213,7 +213,8 @@ TEST(GravityDirect, ConservesMomentum) {
 
 TEST(GravityDirect, BitwiseIdenticalForOneAndTwoThreads) {
   const test::Cloud c = test::plummer(1500, 1.0, 1.0, 0.05, 9);
-  const DirectResult one = run_direct<3>(c.sources(), 1.0, 1), two = run_direct<3>(c.sources(), 1.0, 2);
+  const DirectResult one = run_direct<3>(c.sources(), 1.0, 1);
+  const DirectResult two = run_direct<3>(c.sources(), 1.0, 2);
   for (int a = 0; a < 3; ++a)
     EXPECT_EQ(0, std::memcmp(one.a[a].data(), two.a[a].data(), c.size() * sizeof(float)));
   EXPECT_EQ(0, std::memcmp(one.pot.data(), two.pot.data(), c.size() * sizeof(float)));

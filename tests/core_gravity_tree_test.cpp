@@ -85,8 +85,9 @@ void check_accuracy(const test::Cloud& c, const char* name) {
     if (theta == 0.5) {
       EXPECT_LE(err, 1e-3) << name;
       EXPECT_LE(perr, 1e-3) << name;
-      ::testing::Test::RecordProperty(std::string(name) + "_force_err_theta_0.5", std::to_string(err));
-      ::testing::Test::RecordProperty(std::string(name) + "_pot_err_theta_0.5", std::to_string(perr));
+      const std::string key = std::string(name) + "_theta_0.5";
+      ::testing::Test::RecordProperty(key + "_force_err", std::to_string(err));
+      ::testing::Test::RecordProperty(key + "_pot_err", std::to_string(perr));
     }
     EXPECT_LT(err, prev) << name << " θ=" << theta;
     prev = err;
@@ -144,7 +145,8 @@ TEST(GravityTree, CoincidentParticlesAndMasslessProbes) {
   for (std::size_t i = 0; i < c.size(); ++i)
     for (int k = 0; k < 3; ++k) ASSERT_TRUE(std::isfinite(f.a[k][i])) << i;
   // The coincident particles pull each other with zero net force (r = 0): they move together.
-  for (int k = 0; k < 3; ++k) EXPECT_NEAR(f.a[k][0], f.a[k][39], 1e-6 * std::fabs(ref.a[k][0]) + 1e-9);
+  for (int k = 0; k < 3; ++k)
+    EXPECT_NEAR(f.a[k][0], f.a[k][39], 1e-6 * std::fabs(ref.a[k][0]) + 1e-9);
 }
 
 }  // namespace

@@ -1,6 +1,6 @@
 #pragma once
 // Kernel-softened Newtonian gravity for the cubic spline (Price & Monaghan 2007, MNRAS 374,
-// 1347, appendix A, eqs. A1-A3 for the M4 spline). Each particle's mass is spread as the kernel
+// 1347, appendix A, for the M4 cubic spline). Each particle's mass is spread as the kernel
 // W(r, h) of `CubicSpline<3>` (src/core/kernels.h): support 2h, q = r/h, σ = 1/(πh³). The pair
 // potential per unit G·m is φ(r, h), with φ' = dφ/dr = M(<r)/r² where M(<r) is the kernel's
 // enclosed mass fraction, so beyond the support (q ≥ 2) φ = -1/r and φ' = 1/r² exactly.
@@ -8,7 +8,7 @@
 // Self-gravity is 3D physics: 2D scenes use the same 3D potential (particles as spheres in the
 // plane), not the logarithmic 2D Green's function.
 //
-// Pairs use the symmetric softening of Price & Monaghan (their eq. 6): the mean of φ'(r, hᵢ)
+// Pairs use the symmetric softening of Price & Monaghan: the mean of φ'(r, hᵢ)
 // and φ'(r, hⱼ), so the pair force is antisymmetric and momentum is conserved.
 #include <cmath>
 #include <cstddef>
@@ -36,7 +36,7 @@ struct CubicSplineGravity {
     if (q < 1.0) return (2.0 / 3.0 * q2 - 0.3 * q4 + 0.1 * q5 - 1.4) / h;
     return (4.0 / 3.0 * q2 - q3 + 0.3 * q4 - q5 / 30.0 - 1.6 + 1.0 / (15.0 * q)) / h;
   }
-  /// ∂φ/∂h at fixed r, for the gravitational grad-h term (Price & Monaghan 2007, eq. A3 style):
+  /// ∂φ/∂h at fixed r, for the gravitational grad-h term of Price & Monaghan 2007:
   /// with φ = f(q)/h, ∂φ/∂h = -(f + q f')/h². Zero beyond the support.
   static double dphi_dh(double r, double h) {
     const double q = r / h;
@@ -50,8 +50,8 @@ struct CubicSplineGravity {
 namespace gravity_detail {
 
 /// φ'(r, h)/r for eight pairs, given r, 1/h and the Newtonian 1/r³. The outer piece is
-/// written in u = 2 - q: φ' r² = M(<r) = 1 - u⁴(1 - 4u/5 + u²/6) (the same polynomial as
-/// eq. A1's, checked in the tests), because eq. A1's form cancels to ~30 float ulps near q = 2.
+/// written in u = 2 - q: φ' r² = M(<r) = 1 - u⁴(1 - 4u/5 + u²/6) (the appendix's polynomial,
+/// checked in the tests), because the appendix's form cancels to ~30 float ulps near q = 2.
 /// Branch-free: every piece is evaluated and the lane's own one selected; callers run this only
 /// when some lane is inside a support.
 inline simd::f8 softened_force_over_r(simd::f8 r, simd::f8 inv_h, simd::f8 inv_r3) {
@@ -62,7 +62,7 @@ inline simd::f8 softened_force_over_r(simd::f8 r, simd::f8 inv_h, simd::f8 inv_r
 }
 
 /// φ(r, h) for eight pairs, given r, 1/h and the Newtonian -1/r. Outer piece likewise in u:
-/// φ = -1/r + u⁵(1 + q)/(30 r), eq. A2's polynomial factored (q·φh + 16/15 has a fifth-order
+/// φ = -1/r + u⁵(1 + q)/(30 r), the appendix's polynomial factored (q·φh + 16/15 has a fifth-order
 /// root at q = 2).
 inline simd::f8 softened_potential(simd::f8 r, simd::f8 inv_h, simd::f8 minus_inv_r) {
   const simd::f8 q = r * inv_h, q2 = q * q, q4 = q2 * q2, u = 2.0f - q, u2 = u * u;
@@ -117,7 +117,8 @@ inline void accumulate_pairs(const simd::f8* xi, const simd::f8* xj, simd::f8 mj
   const simd::f8 inv_hmin = inv_hi < inv_hj ? inv_hi : inv_hj;  // the larger support decides
   simd::f8 g = inv_r3, phi = -inv_r;
   if (simd::any(valid & (r * inv_hmin < 2.0f))) {
-    g = 0.5f * (softened_force_over_r(r, inv_hi, inv_r3) + softened_force_over_r(r, inv_hj, inv_r3));
+    g = 0.5f *
+        (softened_force_over_r(r, inv_hi, inv_r3) + softened_force_over_r(r, inv_hj, inv_r3));
     if constexpr (Pot)
       phi = 0.5f * (softened_potential(r, inv_hi, -inv_r) + softened_potential(r, inv_hj, -inv_r));
   }

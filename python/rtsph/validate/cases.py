@@ -153,17 +153,22 @@ def dam_break(method: str, level: str, threads: int) -> Result:
     sim, T, Z = _dam_break_run(method, spacing, threads)
     raw, fitted, offset = _front_errors(T, Z)
     conv = []
+    failed = []
     if level == "full":
         for s in (0.04, 0.02, 0.01):
-            _, t, z = _dam_break_run(method, s, threads)
-            conv.append((s, _front_errors(t, z)[1]))
+            try:
+                _, t, z = _dam_break_run(method, s, threads)
+                conv.append((s, _front_errors(t, z)[1]))
+            except rtsph.InstabilityError as e:  # reported, and left out of the order
+                failed.append(f"spacing {s} m did not finish: {e}")
     r = Result(case="dam_break_2d", method=method,
                metric="mean relative error of the surge front, clock origin fitted within 16 ms",
                error=fitted, tolerance=0.05, particles=sim.particle_count, wall_s=time.perf_counter() - t0,
                setup=f"1 m × 2 m column in a 6 m tank, spacing {spacing} m",
                reference="Martin & Moyce 1952, surge front of the n² = 2 column (as in tests/physics_dam_break_test.cpp)",
                notes=(f"raw clock: {100 * raw:.1f}%; fitted offset ΔT = {offset:.2f}. "
-                      "The residual column height (their Table 6) is not compared yet: its data is not sourced."),
+                      "The residual column height (their Table 6) is not compared yet: its data is not sourced. "
+                      + " ".join(failed)),
                series={"T": T, "Z": Z}, convergence=conv, extra={"raw_clock_error": raw, "clock_offset_T": offset})
 
     def plot(ax, res):

@@ -1,0 +1,121 @@
+#version 430 core
+// Surface pass 4: shading at full resolution (van der Laan et al. 2009; Green, GDC 2010).
+// The smoothed depth gives the surface position and, by finite differences (the smaller of
+// the two one-sided ones, so silhouettes do not bleed), its normal. Over that:
+// - Fresnel (Schlick) mixes a reflected sky gradient with the refracted scene;
+// - refraction samples the opaque scene (floor grid, obstacles, walls) offset by normal ×
+//   thickness, and only where what it samples lies behind the water;
+// - Beer–Lambert: the refracted light is attenuated per channel by exp(−k·thickness) and the
+//   water's own colour scattered in, so deep water is darker and bluer than shallow water;
+// - a Blinn-Phong highlight of a sun fixed in the world;
+// - thin spots (a ray through one or two droplets) are spray: drawn as small white drops.
+// Where the scene is nearer than the water, or there is no water, the scene shows unchanged.
+in vec2 v_uv;
+
+uniform sampler2D u_scene;        // opaque scene colour, full resolution
+uniform sampler2D u_scene_depth;  // its window depth
+uniform sampler2D u_depth;        // smoothed eye distance (surface resolution), 0 = none
+uniform sampler2D u_thickness;    // summed thickness (m), surface resolution
+uniform mat4 u_proj;
+uniform mat3 u_view_to_world;     // rotation: view-space directions → world
+uniform vec3 u_water;             // water colour (what deep water tends to)
+uniform float u_radius;           // particle radius (m)
+uniform int u_output;             // 0 shaded, 1 world normal as colour (tests)
+
+out vec4 o_color;
+
+const float kAbsorb = 2.5;        // absorption per metre per unit of −ln(water colour)
+const float kRefract = 0.2;       // refraction offset per metre of thickness (m/m)
+
+float view_z(float window_depth) {
+  return -u_proj[3][2] / (2.0 * window_depth - 1.0 + u_proj[2][2]);
+}
+
+vec3 view_pos(vec2 uv, float d) {
+  vec2 ndc = uv * 2.0 - 1.0;
+  return vec3((ndc + vec2(u_proj[2][0], u_proj[2][1])) * d / vec2(u_proj[0][0], u_proj[1][1]), -d);
+}
+
+// Bilinear depth that ignores empty texels; 0 where less than half the footprint is water.
+float fluid_depth(vec2 uv) {
+  vec2 size = vec2(textureSize(u_depth, 0));
+  vec2 t = uv * size - 0.5;
+  ivec2 i0 = ivec2(floor(t));
+  vec2 f = t - floor(t);
+  ivec2 hi = ivec2(size) - 1;
+  float sum = 0.0, wsum = 0.0;
+  for (int k = 0; k < 4; ++k) {
+    ivec2 o = ivec2(k & 1, k >> 1);
+    float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
+    float d = texelFetch(u_depth, clamp(i0 + o, ivec2(0), hi), 0).r;
+    if (d > 0.0) {
+      sum += w * d;
+      wsum += w;
+    }
+  }
+  return wsum >= 0.5 ? sum / wsum : 0.0;
+}
+
+vec3 sky(vec3 dir_world) {
+  float up = dir_world.y;
+  vec3 zenith = vec3(0.32, 0.52, 0.82), horizon = vec3(0.80, 0.86, 0.92), ground = vec3(0.22, 0.22, 0.24);
+  return up >= 0.0 ? mix(horizon, zenith, pow(up, 0.6)) : mix(horizon, ground, pow(-up, 0.4));
+}
+
+void main() {
+  float scene_wd = texture(u_scene_depth, v_uv).r;
+  vec3 scene = texture(u_scene, v_uv).rgb;
+  float d = fluid_depth(v_uv);
+  if (d <= 0.0 || d > -view_z(scene_wd)) {
+    o_color = vec4(scene, 1.0);
+    gl_FragDepth = scene_wd;
+    return;
+  }
+  vec3 p = view_pos(v_uv, d);
+  vec2 texel = 1.0 / vec2(textureSize(u_depth, 0));
+  vec3 ddx = vec3(texel.x, 0.0, 0.0), ddy = vec3(0.0, texel.y, 0.0);
+  float dxp = fluid_depth(v_uv + vec2(texel.x, 0.0)), dxm = fluid_depth(v_uv - vec2(texel.x, 0.0));
+  float dyp = fluid_depth(v_uv + vec2(0.0, texel.y)), dym = fluid_depth(v_uv - vec2(0.0, texel.y));
+  vec3 ax = dxp > 0.0 ? view_pos(v_uv + vec2(texel.x, 0.0), dxp) - p : vec3(0.0);
+  vec3 bx = dxm > 0.0 ? p - view_pos(v_uv - vec2(texel.x, 0.0), dxm) : vec3(0.0);
+  vec3 ay = dyp > 0.0 ? view_pos(v_uv + vec2(0.0, texel.y), dyp) - p : vec3(0.0);
+  vec3 by = dym > 0.0 ? p - view_pos(v_uv - vec2(0.0, texel.y), dym) : vec3(0.0);
+  vec3 tx = (dxm <= 0.0 || (dxp > 0.0 && abs(ax.z) < abs(bx.z))) ? ax : bx;
+  vec3 ty = (dym <= 0.0 || (dyp > 0.0 && abs(ay.z) < abs(by.z))) ? ay : by;
+  vec3 n = normalize(cross(tx, ty));
+  if (dot(tx, tx) == 0.0 || dot(ty, ty) == 0.0) n = vec3(0.0, 0.0, 1.0);  // a lone texel
+  if (u_output == 1) {
+    o_color = vec4(0.5 + 0.5 * (u_view_to_world * n), 1.0);
+    vec4 clip = u_proj * vec4(p, 1.0);
+    gl_FragDepth = 0.5 * (clip.z / clip.w) + 0.5;
+    return;
+  }
+
+  float thickness = texture(u_thickness, v_uv).r;
+  vec3 V = -normalize(p);
+  // Refraction: offset the scene lookup by normal · thickness, converted to uv at this depth.
+  vec2 off = n.xy * kRefract * min(thickness, 1.0) * vec2(u_proj[0][0], u_proj[1][1]) / (2.0 * d);
+  vec2 ruv = clamp(v_uv - off, vec2(0.0), vec2(1.0));
+  if (-view_z(texture(u_scene_depth, ruv).r) < d) ruv = v_uv;  // that point is in front: no bend
+  vec3 behind = texture(u_scene, ruv).rgb;
+  vec3 k = -log(max(u_water, vec3(0.02))) * kAbsorb;
+  vec3 transmit = exp(-k * thickness);
+  vec3 refracted = behind * transmit + u_water * 0.3 * (1.0 - transmit);
+
+  vec3 r_world = u_view_to_world * reflect(-V, n);
+  float fresnel = 0.02 + 0.98 * pow(1.0 - max(dot(n, V), 0.0), 5.0);
+  // The sun is fixed in the world (high, to the side), so flat water glints only where it
+  // mirrors it, not at a fixed place on the screen.
+  vec3 L = normalize(transpose(u_view_to_world) * normalize(vec3(0.4, 1.0, 0.3)));
+  float spec = pow(max(dot(n, normalize(L + V)), 0.0), 200.0);
+  vec3 col = mix(refracted, sky(r_world), fresnel) + vec3(0.8) * spec;
+
+  // Spray: a ray through at most a couple of droplets. White, lit like a small sphere.
+  float spray = 1.0 - smoothstep(1.0 * u_radius, 2.5 * u_radius, thickness);
+  vec3 drop = vec3(0.92, 0.95, 1.0) * (0.55 + 0.45 * max(dot(n, L), 0.0));
+  col = mix(col, drop, spray);
+
+  o_color = vec4(col, 1.0);
+  vec4 clip = u_proj * vec4(p, 1.0);
+  gl_FragDepth = 0.5 * (clip.z / clip.w) + 0.5;
+}

@@ -1,0 +1,166 @@
+#include "render/surface_pass.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+
+namespace rtsph::render {
+
+namespace {
+constexpr int kSmoothRounds = 1;
+constexpr float kDepthSplat = 1.5f;  // depth splat radius over the particle radius
+double now_s() {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
+}
+void bind_texture(int unit, GLuint tex) {
+  glActiveTexture(GL_TEXTURE0 + unit);
+  glBindTexture(GL_TEXTURE_2D, tex);
+}
+}  // namespace
+
+SurfacePass::SurfacePass()
+    : depth_({"particle.vert", "surface_depth.frag"}),
+      thickness_({"particle.vert", "surface_thickness.frag"}),
+      smooth_({"surface_quad.vert", "surface_smooth.frag"}),
+      shade_({"surface_quad.vert", "surface_shade.frag"}),
+      // Depth is read texel by texel (or interpolated by hand, skipping empty texels);
+      // colour and thickness are filtered.
+      scene_(GL_RGBA8, TextureTarget::Depth::Texture, true),
+      depth_target_(GL_R32F, TextureTarget::Depth::Renderbuffer, false),
+      thickness_target_(GL_R32F, TextureTarget::Depth::None, true),
+      smooth_a_(GL_R32F, TextureTarget::Depth::None, false),
+      smooth_b_(GL_R32F, TextureTarget::Depth::None, false) {
+  glGenVertexArrays(1, &empty_vao_);
+}
+
+SurfacePass::~SurfacePass() { glDeleteVertexArrays(1, &empty_vao_); }
+
+void SurfacePass::lap(double* into) {
+  if (!timing_) return;
+  glFinish();
+  const double t = now_s();
+  *into += t - t_last_;
+  t_last_ = t;
+}
+
+void SurfacePass::begin_scene(int width, int height, bool time_passes) {
+  timing_ = time_passes;
+  if (timing_) {
+    glFinish();
+    t_last_ = now_s();
+  }
+  scene_.bind(width, height);
+}
+
+void SurfacePass::set_sphere_uniforms(const Program& p, const SurfaceFrame& f, float radius, int w,
+                                      int h) {
+  p.use();
+  glUniformMatrix4fv(p.loc("u_view"), 1, GL_FALSE, f.view.data());
+  glUniformMatrix4fv(p.loc("u_proj"), 1, GL_FALSE, f.proj.data());
+  glUniform1f(p.loc("u_radius"), radius);
+  glUniform1i(p.loc("u_dim"), 3);
+  glUniform1i(p.loc("u_ortho"), 0);
+  glUniform1i(p.loc("u_color_mode"), 0);
+  glUniform1i(p.loc("u_points"), f.points ? 1 : 0);
+  glUniform1f(p.loc("u_viewport_h"), static_cast<float>(h));
+  glUniform4f(p.loc("u_viewport"), 0, 0, static_cast<float>(w), static_cast<float>(h));
+  glUniform1i(p.loc("u_scene_depth"), 1);
+  glUniform1i(p.loc("u_lut"), 0);
+}
+
+int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
+  lap(&times_.scene_s);
+  const float scale = std::clamp(s.surface_scale, 0.1f, 1.0f);
+  const int w = std::max(8, static_cast<int>(std::lround(f.width * scale)));
+  const int h = std::max(8, static_cast<int>(std::lround(f.height * scale)));
+  const float r = s.particle_radius;
+  glDisable(GL_BLEND);
+  glDisable(GL_CULL_FACE);
+  if (f.points) glEnable(GL_PROGRAM_POINT_SIZE);
+  bind_texture(1, scene_.depth());
+
+  // Depth splats: nearest front surface per pixel.
+  depth_target_.bind(w, h);
+  glClearColor(0, 0, 0, 0);
+  glClearDepth(1.0);
+  glDepthMask(GL_TRUE);
+  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_LESS);
+  // Spheres of 1.5 r overlap on a lattice of spacing 2r (a lattice's deepest gap, between four
+  // spheres, lies √2 r from their centres): no holes to see through, bumps of 0.4 r, not r.
+  set_sphere_uniforms(depth_, f, kDepthSplat * r, w, h);
+  f.draw_fluid();
+  lap(&times_.depth_s);
+
+  // Thickness: additive, no depth test.
+  thickness_target_.bind(w, h);
+  glClear(GL_COLOR_BUFFER_BIT);
+  glDisable(GL_DEPTH_TEST);
+  glEnable(GL_BLEND);
+  glBlendFunc(GL_ONE, GL_ONE);
+  glBlendEquation(GL_FUNC_ADD);
+  set_sphere_uniforms(thickness_, f, 2 * r, w, h);  // soft splats one spacing wide
+  f.draw_fluid();
+  glDisable(GL_BLEND);
+  if (f.points) glDisable(GL_PROGRAM_POINT_SIZE);
+  lap(&times_.thickness_s);
+
+  // Smoothing: x then y.
+  glBindVertexArray(empty_vao_);
+  smooth_.use();
+  glUniform1i(smooth_.loc("u_depth"), 0);
+  glUniform1f(smooth_.loc("u_px_per_m"), f.proj.at(1, 1) * 0.5f * static_cast<float>(h));
+  glUniform1f(smooth_.loc("u_radius"), r);
+  glUniform1f(smooth_.loc("u_max_px"), 24.0f * scale / 0.5f);
+  // Two rounds of x then y: one separable round leaves streaks along the lattice's rows.
+  GLuint src = depth_target_.color();
+  for (int round = 0; round < kSmoothRounds; ++round) {
+    smooth_a_.bind(w, h);
+    bind_texture(0, src);
+    glUniform2i(smooth_.loc("u_dir"), 1, 0);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    smooth_b_.bind(w, h);
+    bind_texture(0, smooth_a_.color());
+    glUniform2i(smooth_.loc("u_dir"), 0, 1);
+    glDrawArrays(GL_TRIANGLES, 0, 3);
+    src = smooth_b_.color();
+  }
+  lap(&times_.smooth_s);
+
+  // Shading into the target at full resolution, with depth.
+  glBindFramebuffer(GL_FRAMEBUFFER, f.target_fbo);
+  glViewport(0, 0, f.width, f.height);
+  glEnable(GL_DEPTH_TEST);
+  glDepthFunc(GL_ALWAYS);
+  glDepthMask(GL_TRUE);
+  shade_.use();
+  bind_texture(0, scene_.color());
+  bind_texture(1, scene_.depth());
+  bind_texture(2, smooth_b_.color());
+  bind_texture(3, thickness_target_.color());
+  glUniform1i(shade_.loc("u_scene"), 0);
+  glUniform1i(shade_.loc("u_scene_depth"), 1);
+  glUniform1i(shade_.loc("u_depth"), 2);
+  glUniform1i(shade_.loc("u_thickness"), 3);
+  glUniformMatrix4fv(shade_.loc("u_proj"), 1, GL_FALSE, f.proj.data());
+  // The view matrix is a rotation and a translation: its rotation's transpose maps view → world.
+  float rot[9];
+  for (int c = 0; c < 3; ++c)
+    for (int k = 0; k < 3; ++k) rot[c * 3 + k] = f.view.at(c, k);
+  glUniformMatrix3fv(shade_.loc("u_view_to_world"), 1, GL_FALSE, rot);
+  glUniform3f(shade_.loc("u_water"), s.water.r, s.water.g, s.water.b);
+  glUniform1f(shade_.loc("u_radius"), r);
+  glUniform1i(shade_.loc("u_output"), output_);
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDepthFunc(GL_LESS);
+  bind_texture(3, 0);
+  bind_texture(2, 0);
+  bind_texture(1, 0);
+  glActiveTexture(GL_TEXTURE0);
+  lap(&times_.shade_s);
+  if (timing_) ++times_.frames;
+  return 3 + 2 * kSmoothRounds;
+}
+
+}  // namespace rtsph::render

@@ -1,7 +1,7 @@
 #version 430 core
-// Surface pass 4: shading at full resolution (van der Laan et al. 2009; Green, GDC 2010).
-// The smoothed depth gives the surface position and, by finite differences (the smaller of
-// the two one-sided ones, so silhouettes do not bleed), its normal. Over that:
+// Surface pass 5: shading at full resolution (van der Laan et al. 2009; Green, GDC 2010).
+// The normal-and-depth image of pass 4 is interpolated by hand (empty texels left out; no
+// water where they make up more than half the footprint). Over the surface:
 // - Fresnel (Schlick) mixes a reflected sky gradient with the refracted scene;
 // - refraction samples the opaque scene (floor grid, obstacles, walls) offset by normal ×
 //   thickness, and only where what it samples lies behind the water;
@@ -14,7 +14,7 @@ in vec2 v_uv;
 
 uniform sampler2D u_scene;        // opaque scene colour, full resolution
 uniform sampler2D u_scene_depth;  // its window depth
-uniform sampler2D u_depth;        // smoothed eye distance (surface resolution), 0 = none
+uniform sampler2D u_normal_depth; // view-space normal and eye distance (surface resolution)
 uniform sampler2D u_thickness;    // summed thickness (m), surface resolution
 uniform mat4 u_proj;
 uniform mat3 u_view_to_world;     // rotation: view-space directions → world
@@ -36,24 +36,26 @@ vec3 view_pos(vec2 uv, float d) {
   return vec3((ndc + vec2(u_proj[2][0], u_proj[2][1])) * d / vec2(u_proj[0][0], u_proj[1][1]), -d);
 }
 
-// Bilinear depth that ignores empty texels; 0 where less than half the footprint is water.
-float fluid_depth(vec2 uv) {
-  vec2 size = vec2(textureSize(u_depth, 0));
+// Bilinear normal and depth that ignore empty texels; w = 0 where less than half the footprint
+// is water.
+vec4 normal_depth(vec2 uv) {
+  vec2 size = vec2(textureSize(u_normal_depth, 0));
   vec2 t = uv * size - 0.5;
   ivec2 i0 = ivec2(floor(t));
   vec2 f = t - floor(t);
   ivec2 hi = ivec2(size) - 1;
-  float sum = 0.0, wsum = 0.0;
+  vec4 sum = vec4(0.0);
+  float wsum = 0.0;
   for (int k = 0; k < 4; ++k) {
     ivec2 o = ivec2(k & 1, k >> 1);
     float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-    float d = texelFetch(u_depth, clamp(i0 + o, ivec2(0), hi), 0).r;
-    if (d > 0.0) {
-      sum += w * d;
+    vec4 nd = texelFetch(u_normal_depth, clamp(i0 + o, ivec2(0), hi), 0);
+    if (nd.w > 0.0) {
+      sum += w * nd;
       wsum += w;
     }
   }
-  return wsum >= 0.5 ? sum / wsum : 0.0;
+  return wsum >= 0.5 ? vec4(normalize(sum.xyz), sum.w / wsum) : vec4(0.0);
 }
 
 vec3 sky(vec3 dir_world) {
@@ -65,25 +67,15 @@ vec3 sky(vec3 dir_world) {
 void main() {
   float scene_wd = texture(u_scene_depth, v_uv).r;
   vec3 scene = texture(u_scene, v_uv).rgb;
-  float d = fluid_depth(v_uv);
+  vec4 nd = normal_depth(v_uv);
+  float d = nd.w;
   if (d <= 0.0 || d > -view_z(scene_wd)) {
     o_color = vec4(scene, 1.0);
     gl_FragDepth = scene_wd;
     return;
   }
   vec3 p = view_pos(v_uv, d);
-  vec2 texel = 1.0 / vec2(textureSize(u_depth, 0));
-  vec3 ddx = vec3(texel.x, 0.0, 0.0), ddy = vec3(0.0, texel.y, 0.0);
-  float dxp = fluid_depth(v_uv + vec2(texel.x, 0.0)), dxm = fluid_depth(v_uv - vec2(texel.x, 0.0));
-  float dyp = fluid_depth(v_uv + vec2(0.0, texel.y)), dym = fluid_depth(v_uv - vec2(0.0, texel.y));
-  vec3 ax = dxp > 0.0 ? view_pos(v_uv + vec2(texel.x, 0.0), dxp) - p : vec3(0.0);
-  vec3 bx = dxm > 0.0 ? p - view_pos(v_uv - vec2(texel.x, 0.0), dxm) : vec3(0.0);
-  vec3 ay = dyp > 0.0 ? view_pos(v_uv + vec2(0.0, texel.y), dyp) - p : vec3(0.0);
-  vec3 by = dym > 0.0 ? p - view_pos(v_uv - vec2(0.0, texel.y), dym) : vec3(0.0);
-  vec3 tx = (dxm <= 0.0 || (dxp > 0.0 && abs(ax.z) < abs(bx.z))) ? ax : bx;
-  vec3 ty = (dym <= 0.0 || (dyp > 0.0 && abs(ay.z) < abs(by.z))) ? ay : by;
-  vec3 n = normalize(cross(tx, ty));
-  if (dot(tx, tx) == 0.0 || dot(ty, ty) == 0.0) n = vec3(0.0, 0.0, 1.0);  // a lone texel
+  vec3 n = nd.xyz;
   if (u_output == 1) {
     o_color = vec4(0.5 + 0.5 * (u_view_to_world * n), 1.0);
     vec4 clip = u_proj * vec4(p, 1.0);
@@ -100,7 +92,10 @@ void main() {
   vec3 behind = texture(u_scene, ruv).rgb;
   vec3 k = -log(max(u_water, vec3(0.02))) * kAbsorb;
   vec3 transmit = exp(-k * thickness);
-  vec3 refracted = behind * transmit + u_water * 0.3 * (1.0 - transmit);
+  // Light scattered in by the water itself has the water's colour and grows with the mean
+  // absorption (per channel it would turn mid depths green: blue is absorbed least).
+  float scattered = 1.0 - exp(-dot(k, vec3(1.0 / 3.0)) * thickness);
+  vec3 refracted = behind * transmit + u_water * 0.5 * scattered;
 
   vec3 r_world = u_view_to_world * reflect(-V, n);
   float fresnel = 0.02 + 0.98 * pow(1.0 - max(dot(n, V), 0.0), 5.0);
@@ -112,8 +107,10 @@ void main() {
 
   // Spray: a ray through at most a couple of droplets. White, lit like a small sphere.
   float spray = 1.0 - smoothstep(1.0 * u_radius, 2.5 * u_radius, thickness);
-  vec3 drop = vec3(0.92, 0.95, 1.0) * (0.55 + 0.45 * max(dot(n, L), 0.0));
-  col = mix(col, drop, spray);
+  // Its outline comes from the thickness (soft, round splats), not from the coarse depth.
+  vec3 drop = vec3(0.92, 0.95, 1.0) * (0.6 + 0.4 * max(dot(n, L), 0.0));
+  float cover = smoothstep(0.4 * u_radius, 0.9 * u_radius, thickness);
+  col = mix(col, mix(scene, drop, cover), spray);
 
   o_color = vec4(col, 1.0);
   vec4 clip = u_proj * vec4(p, 1.0);

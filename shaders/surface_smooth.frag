@@ -7,7 +7,8 @@
 // ignored, so silhouettes stay sharp. The centre is first pulled to the nearest depth within
 // a spacing (at most two radii forward): a pixel that looks through a gap of the lattice into
 // a lower layer belongs to the surface in front of it.
-uniform sampler2D u_depth;     // eye distance, 0 = no fluid
+uniform sampler2D u_depth;     // eye distance, 0 = no fluid (u_inverse: its inverse)
+uniform int u_inverse;         // 1: the input holds 1 / distance (the splat pass's image)
 uniform ivec2 u_dir;           // (1, 0) or (0, 1)
 uniform float u_px_per_m;      // pixels per metre at unit distance: proj[1][1] · height / 2
 uniform float u_radius;        // particle radius (m)
@@ -15,15 +16,19 @@ uniform float u_max_px;        // filter radius cap (pixels)
 
 out float o_depth;
 
-const int kTaps = 8;           // samples on each side
+const int kTaps = 5;           // samples on each side
 const float kFilter = 3.0;     // filter radius in particle radii (one and a half spacings)
 const int kHole = 6;           // widest gap filled (pixels)
 const float kFar = 8.0;        // samples this many radii behind are another sheet
 
+float fetch(ivec2 p) {
+  float v = texelFetch(u_depth, clamp(p, ivec2(0), textureSize(u_depth, 0) - 1), 0).r;
+  return u_inverse == 1 && v > 0.0 ? 1.0 / v : v;
+}
+
 void main() {
   ivec2 c = ivec2(gl_FragCoord.xy);
-  ivec2 hi = textureSize(u_depth, 0) - 1;
-  float z = texelFetch(u_depth, c, 0).r;
+  float z = fetch(c);
   if (z <= 0.0) {
     // A gap between the splats (a thin sheet seen through its lattice) with water on both
     // sides within one spacing is filled with the nearer side: holes smaller than a particle
@@ -31,8 +36,8 @@ void main() {
     float zl = 0.0, zr = 0.0;
     int il = 0, ir = 0;
     for (int i = 1; i <= kHole; ++i) {
-      float a = texelFetch(u_depth, clamp(c - u_dir * i, ivec2(0), hi), 0).r;
-      float b = texelFetch(u_depth, clamp(c + u_dir * i, ivec2(0), hi), 0).r;
+      float a = fetch(c - u_dir * i);
+      float b = fetch(c + u_dir * i);
       if (il == 0 && a > 0.0) zl = a, il = i;
       if (ir == 0 && b > 0.0) zr = b, ir = i;
     }
@@ -50,7 +55,7 @@ void main() {
   float spacing_px = 2.0 * u_radius * u_px_per_m / z;
   for (int i = -kTaps; i <= kTaps; ++i) {
     float x = float(i) * step;
-    d[i + kTaps] = texelFetch(u_depth, clamp(c + u_dir * int(round(x)), ivec2(0), hi), 0).r;
+    d[i + kTaps] = fetch(c + u_dir * int(round(x)));
     if (d[i + kTaps] > 0.0 && abs(x) <= spacing_px) z_near = min(z_near, d[i + kTaps]);
   }
   float zc = min(z, z_near + 2.0 * u_radius);

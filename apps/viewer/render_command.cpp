@@ -46,8 +46,9 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 }
 void print_pass_times(const render::SurfacePassTimes& t) {
   const double n = double(std::max(t.frames, 1L));
-  std::fprintf(stderr, "rtsph render: surface passes over %ld frames, ms/frame: scene %.2f, depth %.2f, thickness %.2f, smooth %.2f, shade %.2f\n",
-               t.frames, 1e3 * t.scene_s / n, 1e3 * t.depth_s / n, 1e3 * t.thickness_s / n, 1e3 * t.smooth_s / n, 1e3 * t.shade_s / n);
+  std::fprintf(stderr, "rtsph render: surface passes over %ld frames, ms/frame: scene %.2f, splat %.2f, smooth %.2f, normal %.2f, shade %.2f\n",
+               t.frames, 1e3 * t.scene_s / n, 1e3 * t.splat_s / n, 1e3 * t.smooth_s / n,
+               1e3 * t.normal_s / n, 1e3 * t.shade_s / n);
 }
 }  // namespace
 

@@ -10,7 +10,7 @@ int Renderer::draw_surface(const Camera& cam, const Mat4& view, const Mat4& proj
   const bool three = dim_ == 3;
   RenderSettings splat = s;  // points or quads, from the radius the splats are drawn at
   splat.boundary_radius = 0;
-  if (!three) splat.particle_radius = Surface2dPass::support(s.particle_radius);
+  splat.particle_radius = three ? 2 * s.particle_radius : Surface2dPass::support(s.particle_radius);
   const bool points = use_points(cam, height, splat);
   auto draw_fluid = [this, points] { draw_particles(fluid_vao_, 0, fluid_n_, points); };
   int calls = 0;

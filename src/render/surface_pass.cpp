@@ -19,17 +19,17 @@ void bind_texture(int unit, GLuint tex) {
 }  // namespace
 
 SurfacePass::SurfacePass()
-    : depth_({"particle.vert", "surface_depth.frag"}),
-      thickness_({"particle.vert", "surface_thickness.frag"}),
+    : splat_({"particle.vert", "surface_splat.frag"}),
       smooth_({"surface_quad.vert", "surface_smooth.frag"}),
+      normal_({"surface_quad.vert", "surface_normal.frag"}),
       shade_({"surface_quad.vert", "surface_shade.frag"}),
       // Depth is read texel by texel (or interpolated by hand, skipping empty texels);
-      // colour and thickness are filtered.
+      // the scene's colour is filtered.
       scene_(GL_RGBA8, TextureTarget::Depth::Texture, true),
-      depth_target_(GL_R32F, TextureTarget::Depth::Renderbuffer, false),
-      thickness_target_(GL_R32F, TextureTarget::Depth::None, true),
+      splat_target_(GL_R32F, TextureTarget::Depth::None, false, GL_R32F),
       smooth_a_(GL_R32F, TextureTarget::Depth::None, false),
-      smooth_b_(GL_R32F, TextureTarget::Depth::None, false) {
+      smooth_b_(GL_R32F, TextureTarget::Depth::None, false),
+      normal_target_(GL_RGBA32F, TextureTarget::Depth::None, false) {
   glGenVertexArrays(1, &empty_vao_);
 }
 
@@ -39,7 +39,7 @@ void SurfacePass::lap(double* into) {
   if (!timing_) return;
   glFinish();
   const double t = now_s();
-  *into += t - t_last_;
+  if (warm_) *into += t - t_last_;  // the first frame compiles the shaders: not counted
   t_last_ = t;
 }
 
@@ -50,22 +50,6 @@ void SurfacePass::begin_scene(int width, int height, bool time_passes) {
     t_last_ = now_s();
   }
   scene_.bind(width, height);
-}
-
-void SurfacePass::set_sphere_uniforms(const Program& p, const SurfaceFrame& f, float radius, int w,
-                                      int h) {
-  p.use();
-  glUniformMatrix4fv(p.loc("u_view"), 1, GL_FALSE, f.view.data());
-  glUniformMatrix4fv(p.loc("u_proj"), 1, GL_FALSE, f.proj.data());
-  glUniform1f(p.loc("u_radius"), radius);
-  glUniform1i(p.loc("u_dim"), 3);
-  glUniform1i(p.loc("u_ortho"), 0);
-  glUniform1i(p.loc("u_color_mode"), 0);
-  glUniform1i(p.loc("u_points"), f.points ? 1 : 0);
-  glUniform1f(p.loc("u_viewport_h"), static_cast<float>(h));
-  glUniform4f(p.loc("u_viewport"), 0, 0, static_cast<float>(w), static_cast<float>(h));
-  glUniform1i(p.loc("u_scene_depth"), 1);
-  glUniform1i(p.loc("u_lut"), 0);
 }
 
 int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
@@ -79,32 +63,37 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   if (f.points) glEnable(GL_PROGRAM_POINT_SIZE);
   bind_texture(1, scene_.depth());
 
-  // Depth splats: nearest front surface per pixel.
-  depth_target_.bind(w, h);
-  glClearColor(0, 0, 0, 0);
-  glClearDepth(1.0);
-  glDepthMask(GL_TRUE);
-  glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
-  glEnable(GL_DEPTH_TEST);
-  glDepthFunc(GL_LESS);
-  // Spheres of 1.5 r overlap on a lattice of spacing 2r (a lattice's deepest gap, between four
-  // spheres, lies √2 r from their centres): no holes to see through, bumps of 0.4 r, not r.
-  set_sphere_uniforms(depth_, f, kDepthSplat * r, w, h);
-  f.draw_fluid();
-  lap(&times_.depth_s);
-
-  // Thickness: additive, no depth test.
-  thickness_target_.bind(w, h);
-  glClear(GL_COLOR_BUFFER_BIT);
+  // Splats: inverse depth (MAX) and thickness (additive) in one draw, no depth test.
+  splat_target_.bind(w, h);
+  const GLfloat zero[4] = {0, 0, 0, 0};
+  glClearBufferfv(GL_COLOR, 0, zero);
+  glClearBufferfv(GL_COLOR, 1, zero);
   glDisable(GL_DEPTH_TEST);
-  glEnable(GL_BLEND);
-  glBlendFunc(GL_ONE, GL_ONE);
-  glBlendEquation(GL_FUNC_ADD);
-  set_sphere_uniforms(thickness_, f, 2 * r, w, h);  // soft splats one spacing wide
+  glEnablei(GL_BLEND, 0);
+  glEnablei(GL_BLEND, 1);
+  glBlendEquationi(0, GL_MAX);
+  glBlendEquationi(1, GL_FUNC_ADD);
+  glBlendFunci(0, GL_ONE, GL_ONE);
+  glBlendFunci(1, GL_ONE, GL_ONE);
+  splat_.use();
+  glUniformMatrix4fv(splat_.loc("u_view"), 1, GL_FALSE, f.view.data());
+  glUniformMatrix4fv(splat_.loc("u_proj"), 1, GL_FALSE, f.proj.data());
+  glUniform1f(splat_.loc("u_radius"), 2 * r);  // the thickness splat, one spacing wide
+  glUniform1f(splat_.loc("u_sphere"), kDepthSplat * r);
+  glUniform1i(splat_.loc("u_dim"), 3);
+  glUniform1i(splat_.loc("u_ortho"), 0);
+  glUniform1i(splat_.loc("u_color_mode"), 0);
+  glUniform1i(splat_.loc("u_points"), f.points ? 1 : 0);
+  glUniform1f(splat_.loc("u_viewport_h"), static_cast<float>(h));
+  glUniform4f(splat_.loc("u_viewport"), 0, 0, static_cast<float>(w), static_cast<float>(h));
+  glUniform1i(splat_.loc("u_scene_depth"), 1);
+  glUniform1i(splat_.loc("u_lut"), 0);
   f.draw_fluid();
-  glDisable(GL_BLEND);
+  glDisablei(GL_BLEND, 0);
+  glDisablei(GL_BLEND, 1);
+  glBlendEquation(GL_FUNC_ADD);
   if (f.points) glDisable(GL_PROGRAM_POINT_SIZE);
-  lap(&times_.thickness_s);
+  lap(&times_.splat_s);
 
   // Smoothing: x then y.
   glBindVertexArray(empty_vao_);
@@ -114,19 +103,29 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   glUniform1f(smooth_.loc("u_radius"), r);
   glUniform1f(smooth_.loc("u_max_px"), 24.0f * scale / 0.5f);
   // Two rounds of x then y: one separable round leaves streaks along the lattice's rows.
-  GLuint src = depth_target_.color();
+  GLuint src = splat_target_.color();
   for (int round = 0; round < kSmoothRounds; ++round) {
     smooth_a_.bind(w, h);
     bind_texture(0, src);
+    glUniform1i(smooth_.loc("u_inverse"), round == 0 ? 1 : 0);
     glUniform2i(smooth_.loc("u_dir"), 1, 0);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     smooth_b_.bind(w, h);
     bind_texture(0, smooth_a_.color());
+    glUniform1i(smooth_.loc("u_inverse"), 0);
     glUniform2i(smooth_.loc("u_dir"), 0, 1);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     src = smooth_b_.color();
   }
   lap(&times_.smooth_s);
+
+  normal_target_.bind(w, h);
+  normal_.use();
+  bind_texture(0, smooth_b_.color());
+  glUniform1i(normal_.loc("u_depth"), 0);
+  glUniformMatrix4fv(normal_.loc("u_proj"), 1, GL_FALSE, f.proj.data());
+  glDrawArrays(GL_TRIANGLES, 0, 3);
+  lap(&times_.normal_s);
 
   // Shading into the target at full resolution, with depth.
   glBindFramebuffer(GL_FRAMEBUFFER, f.target_fbo);
@@ -137,11 +136,11 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   shade_.use();
   bind_texture(0, scene_.color());
   bind_texture(1, scene_.depth());
-  bind_texture(2, smooth_b_.color());
-  bind_texture(3, thickness_target_.color());
+  bind_texture(2, normal_target_.color());
+  bind_texture(3, splat_target_.color2());
   glUniform1i(shade_.loc("u_scene"), 0);
   glUniform1i(shade_.loc("u_scene_depth"), 1);
-  glUniform1i(shade_.loc("u_depth"), 2);
+  glUniform1i(shade_.loc("u_normal_depth"), 2);
   glUniform1i(shade_.loc("u_thickness"), 3);
   glUniformMatrix4fv(shade_.loc("u_proj"), 1, GL_FALSE, f.proj.data());
   // The view matrix is a rotation and a translation: its rotation's transpose maps view → world.
@@ -159,7 +158,8 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   bind_texture(1, 0);
   glActiveTexture(GL_TEXTURE0);
   lap(&times_.shade_s);
-  if (timing_) ++times_.frames;
+  if (timing_ && warm_) ++times_.frames;
+  warm_ = true;
   return 3 + 2 * kSmoothRounds;
 }
 

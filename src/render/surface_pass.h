@@ -3,12 +3,14 @@
 // Truong & Yuksel 2018). Per frame:
 //   scene      the opaque scene (floor grid, obstacles) into a colour + depth texture at full
 //              resolution (drawn by Renderer between begin_scene() and draw());
-//   depth      sphere splats of the fluid particles: nearest eye distance (surface resolution);
-//   thickness  additive ray lengths through the spheres, cut at the scene's depth;
-//   smooth     a separable narrow-range filter of the depth, x then y, radius ∝ screen size;
-//   shade      full resolution into the target: normals from the smoothed depth, Fresnel mix of
-//              a sky gradient and the refracted scene, Beer–Lambert absorption, highlight,
-//              spray; writes depth so later geometry (walls, boundary particles) sorts with it.
+//   splat      one draw of the fluid particles into two images (surface resolution): the
+//              nearest sphere's eye distance (blend MAX of its inverse) and the thickness,
+//              soft additive splats summing to the depth of water along each ray;
+//   smooth     a separable bilateral filter of the depth, x then y, radius ∝ screen size;
+//   normal     normals from the smoothed depth, stored with it;
+//   shade      full resolution into the target: Fresnel mix of a sky gradient and the
+//              refracted scene, Beer–Lambert absorption, highlight, spray; writes depth so
+//              later geometry (walls, boundary particles) sorts with it.
 // The fluid passes run at RenderSettings::surface_scale of the frame's resolution.
 #include <functional>
 
@@ -20,9 +22,10 @@
 namespace rtsph::render {
 
 /// CPU time of each pass, summed over `frames` (RenderSettings::time_passes; glFinish between
-/// passes, so the sum exceeds the pipelined frame time a little).
+/// passes, so the sum exceeds the pipelined frame time a little; the first frame, which
+/// compiles the shaders, is not counted).
 struct SurfacePassTimes {
-  double scene_s = 0, depth_s = 0, thickness_s = 0, smooth_s = 0, shade_s = 0;
+  double scene_s = 0, splat_s = 0, smooth_s = 0, normal_s = 0, shade_s = 0;
   long frames = 0;
 };
 
@@ -54,13 +57,13 @@ class SurfacePass {
 
  private:
   void lap(double* into);
-  void set_sphere_uniforms(const Program& p, const SurfaceFrame& f, float radius, int w, int h);
 
-  Program depth_, thickness_, smooth_, shade_;
-  TextureTarget scene_, depth_target_, thickness_target_, smooth_a_, smooth_b_;
+  Program splat_, smooth_, normal_, shade_;
+  TextureTarget scene_, splat_target_, smooth_a_, smooth_b_, normal_target_;
   GLuint empty_vao_ = 0;
   int output_ = 0;
   bool timing_ = false;
+  bool warm_ = false;  // a frame has been drawn
   double t_last_ = 0;
   SurfacePassTimes times_;
 };

@@ -20,9 +20,10 @@ TextureTarget::~TextureTarget() { release(); }
 void TextureTarget::release() {
   if (fbo_) glDeleteFramebuffers(1, &fbo_);
   if (color_) glDeleteTextures(1, &color_);
+  if (color2_) glDeleteTextures(1, &color2_);
   if (depth_ && depth_kind_ == Depth::Texture) glDeleteTextures(1, &depth_);
   if (depth_ && depth_kind_ == Depth::Renderbuffer) glDeleteRenderbuffers(1, &depth_);
-  fbo_ = color_ = depth_ = 0;
+  fbo_ = color_ = color2_ = depth_ = 0;
   w_ = h_ = 0;
 }
 
@@ -38,6 +39,15 @@ void TextureTarget::bind(int w, int h) {
     glTexStorage2D(GL_TEXTURE_2D, 1, format_, w, h);
     texture_params(linear_ ? GL_LINEAR : GL_NEAREST);
     glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_TEXTURE_2D, color_, 0);
+    if (format2_) {
+      glGenTextures(1, &color2_);
+      glBindTexture(GL_TEXTURE_2D, color2_);
+      glTexStorage2D(GL_TEXTURE_2D, 1, format2_, w, h);
+      texture_params(linear_ ? GL_LINEAR : GL_NEAREST);
+      glFramebufferTexture2D(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT1, GL_TEXTURE_2D, color2_, 0);
+      const GLenum buffers[2] = {GL_COLOR_ATTACHMENT0, GL_COLOR_ATTACHMENT1};
+      glDrawBuffers(2, buffers);
+    }
     if (depth_kind_ == Depth::Texture) {
       glGenTextures(1, &depth_);
       glBindTexture(GL_TEXTURE_2D, depth_);

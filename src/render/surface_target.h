@@ -9,9 +9,10 @@ namespace rtsph::render {
 class TextureTarget {
  public:
   enum class Depth { None, Renderbuffer, Texture };
-  /// linear: the colour texture is sampled with bilinear filtering (else nearest texels).
-  TextureTarget(GLenum color_format, Depth depth, bool linear)
-      : format_(color_format), depth_kind_(depth), linear_(linear) {}
+  /// linear: the colour textures are sampled with bilinear filtering (else nearest texels).
+  /// color2_format: a second colour attachment of that format (0: none).
+  TextureTarget(GLenum color_format, Depth depth, bool linear, GLenum color2_format = 0)
+      : format_(color_format), format2_(color2_format), depth_kind_(depth), linear_(linear) {}
   ~TextureTarget();
   TextureTarget(const TextureTarget&) = delete;
   TextureTarget& operator=(const TextureTarget&) = delete;
@@ -19,16 +20,17 @@ class TextureTarget {
   /// (Re)allocates at w×h if the size changed, binds the framebuffer and sets the viewport.
   void bind(int w, int h);
   GLuint color() const { return color_; }
+  GLuint color2() const { return color2_; }
   GLuint depth() const { return depth_; }  // texture (Depth::Texture) or renderbuffer
   int width() const { return w_; }
   int height() const { return h_; }
 
  private:
   void release();
-  GLenum format_;
+  GLenum format_, format2_;
   Depth depth_kind_;
   bool linear_;
-  GLuint fbo_ = 0, color_ = 0, depth_ = 0;
+  GLuint fbo_ = 0, color_ = 0, color2_ = 0, depth_ = 0;
   int w_ = 0, h_ = 0;
 };
 

@@ -32,7 +32,8 @@ void build_grid_lines(int dim, const Vec3f& lo, const Vec3f& hi, std::vector<Lin
   if (three) {
     const float cx = 0.5f * (lo.x + hi.x), cz = 0.5f * (lo.z + hi.z);
     const float half = std::ceil(1.5f * extent / step) * step;
-    const float x0 = std::floor((cx - half) / step) * step, z0 = std::floor((cz - half) / step) * step;
+    const float x0 = std::floor((cx - half) / step) * step;
+    const float z0 = std::floor((cz - half) / step) * step;
     const int lines = static_cast<int>(std::lround(2 * half / step)) + 1;
     const float y = lo.y - 1e-4f * extent, end = lines * step;
     for (int i = 0; i <= lines; ++i) {

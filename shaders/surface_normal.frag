@@ -2,7 +2,9 @@
 // Surface pass 4: normals from the smoothed depth, at the surface resolution. Each texel's
 // view-space position comes from its depth; the tangents are the smaller of the two one-sided
 // differences in x and in y (van der Laan et al. 2009), so a silhouette does not bend the
-// surface next to it. Output: normal (view space) and depth, 0 where there is no water.
+// surface next to it. Output (n.x, n.y, depth, 1), view space, 0 where there is no water: the
+// shading pass reads it with hardware bilinear filtering and divides by the fourth channel,
+// which leaves empty texels out; n.z ≥ 0 follows from n.x, n.y (the surface faces the eye).
 uniform sampler2D u_depth;     // smoothed eye distance, 0 = none
 uniform mat4 u_proj;
 
@@ -38,5 +40,5 @@ void main() {
   vec3 p = view_pos(c, d);
   vec3 tx = tangent(c, p, ivec2(1, 0)), ty = tangent(c, p, ivec2(0, 1));
   vec3 n = dot(tx, tx) > 0.0 && dot(ty, ty) > 0.0 ? normalize(cross(tx, ty)) : vec3(0.0, 0.0, 1.0);
-  o_normal_depth = vec4(n, d);
+  o_normal_depth = vec4(n.xy, d, 1.0);
 }

@@ -1,7 +1,8 @@
 #version 430 core
 // Surface pass 5: shading at full resolution (van der Laan et al. 2009; Green, GDC 2010).
-// The normal-and-depth image of pass 4 is interpolated by hand (empty texels left out; no
-// water where they make up more than half the footprint). Over the surface:
+// The normal-and-depth image of pass 4 is read with bilinear filtering; its fourth channel is
+// the covered fraction of the footprint (empty texels are 0 and drop out of the average; no
+// water where less than half is covered). Over the surface:
 // - Fresnel (Schlick) mixes a reflected sky gradient with the refracted scene;
 // - refraction samples the opaque scene (floor grid, obstacles, walls) offset by normal ×
 //   thickness, and only where what it samples lies behind the water;
@@ -14,17 +15,18 @@ in vec2 v_uv;
 
 uniform sampler2D u_scene;        // opaque scene colour, full resolution
 uniform sampler2D u_scene_depth;  // its window depth
-uniform sampler2D u_normal_depth; // view-space normal and eye distance (surface resolution)
+uniform sampler2D u_normal_depth; // (n.x, n.y, eye distance, 1), 0 = none (surface resolution)
 uniform sampler2D u_thickness;    // summed thickness (m), surface resolution
 uniform mat4 u_proj;
 uniform mat3 u_view_to_world;     // rotation: view-space directions → world
 uniform vec3 u_water;             // water colour (what deep water tends to)
+uniform vec3 u_absorb;            // Beer–Lambert coefficients (1/m), from the water colour
+uniform vec3 u_sun;               // direction to the sun, view space (fixed in the world)
 uniform float u_radius;           // particle radius (m)
 uniform int u_output;             // 0 shaded, 1 world normal as colour (tests)
 
 out vec4 o_color;
 
-const float kAbsorb = 2.5;        // absorption per metre per unit of −ln(water colour)
 const float kRefract = 0.2;       // refraction offset per metre of thickness (m/m)
 
 float view_z(float window_depth) {
@@ -36,46 +38,25 @@ vec3 view_pos(vec2 uv, float d) {
   return vec3((ndc + vec2(u_proj[2][0], u_proj[2][1])) * d / vec2(u_proj[0][0], u_proj[1][1]), -d);
 }
 
-// Bilinear normal and depth that ignore empty texels; w = 0 where less than half the footprint
-// is water.
-vec4 normal_depth(vec2 uv) {
-  vec2 size = vec2(textureSize(u_normal_depth, 0));
-  vec2 t = uv * size - 0.5;
-  ivec2 i0 = ivec2(floor(t));
-  vec2 f = t - floor(t);
-  ivec2 hi = ivec2(size) - 1;
-  vec4 sum = vec4(0.0);
-  float wsum = 0.0;
-  for (int k = 0; k < 4; ++k) {
-    ivec2 o = ivec2(k & 1, k >> 1);
-    float w = (o.x == 1 ? f.x : 1.0 - f.x) * (o.y == 1 ? f.y : 1.0 - f.y);
-    vec4 nd = texelFetch(u_normal_depth, clamp(i0 + o, ivec2(0), hi), 0);
-    if (nd.w > 0.0) {
-      sum += w * nd;
-      wsum += w;
-    }
-  }
-  return wsum >= 0.5 ? vec4(normalize(sum.xyz), sum.w / wsum) : vec4(0.0);
-}
-
 vec3 sky(vec3 dir_world) {
   float up = dir_world.y;
   vec3 zenith = vec3(0.32, 0.52, 0.82), horizon = vec3(0.80, 0.86, 0.92), ground = vec3(0.22, 0.22, 0.24);
-  return up >= 0.0 ? mix(horizon, zenith, pow(up, 0.6)) : mix(horizon, ground, pow(-up, 0.4));
+  return up >= 0.0 ? mix(horizon, zenith, sqrt(up)) : mix(horizon, ground, sqrt(-up));
 }
 
 void main() {
   float scene_wd = texture(u_scene_depth, v_uv).r;
   vec3 scene = texture(u_scene, v_uv).rgb;
-  vec4 nd = normal_depth(v_uv);
-  float d = nd.w;
+  vec4 nd = texture(u_normal_depth, v_uv);
+  float d = nd.w >= 0.5 ? nd.z / nd.w : 0.0;
   if (d <= 0.0 || d > -view_z(scene_wd)) {
     o_color = vec4(scene, 1.0);
     gl_FragDepth = scene_wd;
     return;
   }
   vec3 p = view_pos(v_uv, d);
-  vec3 n = nd.xyz;
+  vec2 nxy = nd.xy / nd.w;
+  vec3 n = normalize(vec3(nxy, sqrt(max(1.0 - dot(nxy, nxy), 0.0))));
   if (u_output == 1) {
     o_color = vec4(0.5 + 0.5 * (u_view_to_world * n), 1.0);
     vec4 clip = u_proj * vec4(p, 1.0);
@@ -90,18 +71,18 @@ void main() {
   vec2 ruv = clamp(v_uv - off, vec2(0.0), vec2(1.0));
   if (-view_z(texture(u_scene_depth, ruv).r) < d) ruv = v_uv;  // that point is in front: no bend
   vec3 behind = texture(u_scene, ruv).rgb;
-  vec3 k = -log(max(u_water, vec3(0.02))) * kAbsorb;
-  vec3 transmit = exp(-k * thickness);
+  vec3 transmit = exp(-u_absorb * thickness);
   // Light scattered in by the water itself has the water's colour and grows with the mean
   // absorption (per channel it would turn mid depths green: blue is absorbed least).
-  float scattered = 1.0 - exp(-dot(k, vec3(1.0 / 3.0)) * thickness);
+  float scattered = 1.0 - dot(transmit, vec3(1.0 / 3.0));
   vec3 refracted = behind * transmit + u_water * 0.5 * scattered;
 
   vec3 r_world = u_view_to_world * reflect(-V, n);
-  float fresnel = 0.02 + 0.98 * pow(1.0 - max(dot(n, V), 0.0), 5.0);
+  float c = 1.0 - max(dot(n, V), 0.0), c2 = c * c;
+  float fresnel = 0.02 + 0.98 * c2 * c2 * c;
   // The sun is fixed in the world (high, to the side), so flat water glints only where it
   // mirrors it, not at a fixed place on the screen.
-  vec3 L = normalize(transpose(u_view_to_world) * normalize(vec3(0.4, 1.0, 0.3)));
+  vec3 L = u_sun;
   float spec = pow(max(dot(n, normalize(L + V)), 0.0), 200.0);
   vec3 col = mix(refracted, sky(r_world), fresnel) + vec3(0.8) * spec;
 

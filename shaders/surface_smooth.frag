@@ -16,7 +16,7 @@ uniform float u_max_px;        // filter radius cap (pixels)
 
 out float o_depth;
 
-const int kTaps = 5;           // samples on each side
+const int kTaps = 4;           // samples on each side
 const float kFilter = 3.0;     // filter radius in particle radii (one and a half spacings)
 const int kHole = 6;           // widest gap filled (pixels)
 const float kFar = 8.0;        // samples this many radii behind are another sheet

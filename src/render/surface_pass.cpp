@@ -29,7 +29,7 @@ SurfacePass::SurfacePass()
       splat_target_(GL_R32F, TextureTarget::Depth::None, false, GL_R32F),
       smooth_a_(GL_R32F, TextureTarget::Depth::None, false),
       smooth_b_(GL_R32F, TextureTarget::Depth::None, false),
-      normal_target_(GL_RGBA32F, TextureTarget::Depth::None, false) {
+      normal_target_(GL_RGBA16F, TextureTarget::Depth::None, true) {
   glGenVertexArrays(1, &empty_vao_);
 }
 
@@ -149,6 +149,16 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
     for (int k = 0; k < 3; ++k) rot[c * 3 + k] = f.view.at(c, k);
   glUniformMatrix3fv(shade_.loc("u_view_to_world"), 1, GL_FALSE, rot);
   glUniform3f(shade_.loc("u_water"), s.water.r, s.water.g, s.water.b);
+  // Beer–Lambert: deep water tends to the water colour, 2.5/m per unit of −ln(colour).
+  auto absorb = [](float c) { return -std::log(std::max(c, 0.02f)) * 2.5f; };
+  glUniform3f(shade_.loc("u_absorb"), absorb(s.water.r), absorb(s.water.g), absorb(s.water.b));
+  // The sun, high and to the side in the world, in view space: the view's rotation applied.
+  const Vec3f sun_world = normalize(Vec3f{0.4f, 1.0f, 0.3f});
+  Vec3f sun;
+  sun.x = f.view.at(0, 0) * sun_world.x + f.view.at(0, 1) * sun_world.y + f.view.at(0, 2) * sun_world.z;
+  sun.y = f.view.at(1, 0) * sun_world.x + f.view.at(1, 1) * sun_world.y + f.view.at(1, 2) * sun_world.z;
+  sun.z = f.view.at(2, 0) * sun_world.x + f.view.at(2, 1) * sun_world.y + f.view.at(2, 2) * sun_world.z;
+  glUniform3f(shade_.loc("u_sun"), sun.x, sun.y, sun.z);
   glUniform1f(shade_.loc("u_radius"), r);
   glUniform1i(shade_.loc("u_output"), output_);
   glDrawArrays(GL_TRIANGLES, 0, 3);

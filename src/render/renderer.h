@@ -4,7 +4,9 @@
 // and one per boundary group, plus a few calls for grid, walls and legend — O(N), no
 // per-particle draw calls. 3D particles are ray-cast sphere impostors with true depth and
 // Blinn-Phong shading; 2D particles are discs under an orthographic camera. Obstacles are
-// drawn as solids from their geometry (SolidPass, one more call).
+// drawn as solids from their geometry (SolidPass, one more call). With Style::Surface the
+// fluid is drawn as a water surface instead: SurfacePass (3D, screen-space) or Surface2dPass
+// (2D, filled contour), from the same vertex buffer (renderer_surface.cpp).
 #include <epoxy/gl.h>
 
 #include <memory>

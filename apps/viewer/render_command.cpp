@@ -17,6 +17,7 @@
 #include "apps/run_summary.h"
 #include "apps/viewer/render_job.h"
 #include "apps/viewer/scene_view.h"
+#include "apps/viewer/view_settings.h"
 #include "render/gl_context.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
@@ -43,6 +44,12 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
   return tail == suffix;
 }
+void print_pass_times(const render::SurfacePassTimes& t) {
+  const double n = double(std::max(t.frames, 1L));
+  std::fprintf(stderr, "rtsph render: surface passes over %ld frames, ms/frame: scene %.2f, splat %.2f, smooth %.2f, normal %.2f, shade %.2f\n",
+               t.frames, 1e3 * t.scene_s / n, 1e3 * t.splat_s / n, 1e3 * t.smooth_s / n,
+               1e3 * t.normal_s / n, 1e3 * t.shade_s / n);
+}
 }  // namespace
 
 int render_scene(const RenderJob& job) {
@@ -52,13 +59,8 @@ int render_scene(const RenderJob& job) {
   int width = 0, height = 0;
   if (!parse_size(job.size, &width, &height))
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", job.size));
-  render::RenderSettings settings;
-  if (!render::parse_color_mode(job.color, &settings.color))
-    throw std::invalid_argument(fmt::format("--color {}: expected solid, speed, velocity, pressure or density", job.color));
-  if (!render::parse_display_mode(job.display, &settings.display))
-    throw std::invalid_argument(fmt::format("--display {}: expected fluid, obstacles or all", job.display));
-  if (!render::parse_colormap(job.colormap, &settings.map))
-    throw std::invalid_argument(fmt::format("--colormap {}: expected viridis or turbo", job.colormap));
+  render::RenderSettings settings = parse_render_options(job.style, job.color, job.display, job.colormap);
+  settings.time_passes = job.time_passes;
   if (job.range_max > job.range_min) {
     settings.auto_range = false;
     settings.range_min = float(job.range_min);
@@ -147,6 +149,7 @@ int render_scene(const RenderJob& job) {
   if (!job.quiet)
     std::fprintf(stderr, "rtsph render: %d frame%s, simulated 0..%.3f s in %.1f s (simulation %.1f s, drawing %.1f s)\n",
                  frames, frames == 1 ? "" : "s", t_end, wall, sim_s, draw_s);
+  if (job.time_passes) print_pass_times(renderer.surface_times());
   std::printf("%s\n", single_png ? job.out.c_str() : sink->path().c_str());
   return 0;
 }
@@ -159,13 +162,15 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--frames", o->frames, "Number of frames (default: the scene's end_time × fps)")->check(CLI::Range(1, 1000000));
   cmd->add_option("--fps", o->fps, "Frames per simulated second; frames are 1/fps apart")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--size", o->size, "Image size WxH")->capture_default_str();
-  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure or density")->capture_default_str();
+  cmd->add_option("--style", o->style, "surface (water surface; 2D: filled contour) or particles")->capture_default_str();
+  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure or density (particle style)")->capture_default_str();
   cmd->add_option("--display", o->display, "fluid, obstacles (fluid + obstacles) or all (with wall particles)")->capture_default_str();
   cmd->add_option("--colormap", o->colormap, "viridis or turbo")->capture_default_str();
   cmd->add_option("--range", o->range, "Fixed colour range MIN,MAX (default: automatic per frame)")->expected(2)->delimiter(',');
   cmd->add_option("--threads", o->threads, "Solver threads (0 = all cores)")->check(CLI::Range(0, 1024));
   cmd->add_option("--set", o->sets, "Override a scene parameter, e.g. --set fluid.spacing=0.04");
   cmd->add_flag("--quiet", o->quiet, "No progress on the terminal");
+  cmd->add_flag("--time-passes", o->time_passes, "Print the CPU time of each surface pass (glFinish between passes)");
   cmd->callback([o, &exit_code] {
     if (o->range.size() == 2) {
       o->range_min = o->range[0];

@@ -11,6 +11,7 @@ struct RenderJob {
   int frames = 0;            // 0 = end_time × fps
   double fps = 30;
   std::string size = "1280x720";
+  std::string style = "surface";
   std::string color = "speed";
   std::string display = "obstacles";
   std::string colormap = "viridis";
@@ -19,6 +20,8 @@ struct RenderJob {
   int threads = 0;
   std::vector<std::string> sets;
   bool quiet = false;
+  bool time_passes = false;  // print the surface passes' CPU time
+
 };
 
 /// Runs the job; returns the exit code (throws on bad input, like the other commands).

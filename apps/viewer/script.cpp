@@ -22,7 +22,7 @@ int script_key(const std::string& name) {
       {"q", GLFW_KEY_Q},         {"w", GLFW_KEY_W},       {"a", GLFW_KEY_A},
       {"s", GLFW_KEY_S},         {"z", GLFW_KEY_Z},       {"x", GLFW_KEY_X},
       {"f12", GLFW_KEY_F12},     {"v", GLFW_KEY_V},       {"h", GLFW_KEY_H},
-      {"esc", GLFW_KEY_ESCAPE},
+      {"esc", GLFW_KEY_ESCAPE},  {"f", GLFW_KEY_F},
   };
   auto it = keys.find(name);
   return it == keys.end() ? -1 : it->second;

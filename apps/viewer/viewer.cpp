@@ -27,6 +27,7 @@
 #include "apps/viewer/scene_view.h"
 #include "apps/viewer/script.h"
 #include "apps/viewer/sim_runner.h"
+#include "apps/viewer/view_settings.h"
 #include "render/gl_context.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
@@ -45,6 +46,7 @@ struct ViewOptions {
   std::string size = "1280x720";
   std::string script;
   std::string color = "solid";
+  std::string style = "surface";
   std::string display = "obstacles";
   std::string colormap = "viridis";
   bool paused = false;
@@ -72,24 +74,6 @@ std::string timestamp() {
 
 Vec3d to3d(const render::Vec3f& v) { return {v.x, v.y, v.z}; }
 render::Vec3f to3f(const Vec3d& v) { return {float(v[0]), float(v[1]), float(v[2])}; }
-
-const char* kHelp =
-    "Mouse\n"
-    "  left drag            orbit (2D: pan)\n"
-    "  middle drag          pan\n"
-    "  wheel                zoom\n"
-    "  Shift + left drag    brush: push fluid away\n"
-    "  Shift + right drag   brush: pull fluid in\n"
-    "  Ctrl + left drag     move the nearest obstacle\n"
-    "Keys\n"
-    "  Space   pause / resume        N   single step\n"
-    "  R       reset                 G   gravity on / off\n"
-    "  1       fullscreen            TAB display: fluid / +obstacles / all\n"
-    "  5 6 7 8 9   colour: density / pressure / velocity / speed / solid\n"
-    "  arrows  rotate the camera (2D: pan)\n"
-    "  q/w a/s z/x   move the selected obstacle along -/+ x, y, z\n"
-    "  F12     screenshot (PNG)      V   start / stop video recording\n"
-    "  H       this help             Esc quit";
 
 class Viewer {
  public:
@@ -434,6 +418,10 @@ void Viewer::on_key(int key, int action, int mods, bool from_script) {
     case GLFW_KEY_V:
       if (action == GLFW_PRESS) toggle_recording();
       break;
+    case GLFW_KEY_F:
+      settings_.style = settings_.style == render::Style::Surface ? render::Style::Particles : render::Style::Surface;
+      status(fmt::format("style: {}", render::style_name(settings_.style)));
+      break;
     case GLFW_KEY_H: help_ = !help_; break;
     case GLFW_KEY_ESCAPE: quit_ = true; break;
     default: break;
@@ -768,6 +756,8 @@ void Viewer::draw_ui() {
     }
   }
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
+    int sty = int(settings_.style);
+    if (ImGui::Combo("style (F)", &sty, "particles\0water surface\0")) settings_.style = render::Style(sty);
     const char* colors[] = {"solid (9)", "speed (8)", "velocity (7)", "pressure (6)", "density (5)"};
     int c = int(settings_.color);
     if (ImGui::Combo("colour", &c, colors, 5)) settings_.color = render::ColorMode(c);
@@ -818,7 +808,7 @@ void Viewer::draw_ui() {
     ImGui::SetNextWindowPos({io.DisplaySize.x * 0.5f, io.DisplaySize.y * 0.5f}, ImGuiCond_Always, {0.5f, 0.5f});
     ImGui::SetNextWindowBgAlpha(0.85f);
     ImGui::Begin("Help (H)", &help_, ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse);
-    ImGui::TextUnformatted(kHelp);
+    ImGui::TextUnformatted(kViewerHelp);
     ImGui::End();
   }
 }
@@ -925,12 +915,7 @@ int Viewer::run() {
   realtime_ = !opt_.accurate;
   SimSpec spec = for_viewer(load_scene(opt_.scene), opt_.sets);
   if (!opt_.script.empty()) script_ = load_script(opt_.script);
-  if (!render::parse_color_mode(opt_.color, &settings_.color))
-    throw std::invalid_argument(fmt::format("--color {}: expected solid, speed, velocity, pressure or density", opt_.color));
-  if (!render::parse_display_mode(opt_.display, &settings_.display))
-    throw std::invalid_argument(fmt::format("--display {}: expected fluid, obstacles or all", opt_.display));
-  if (!render::parse_colormap(opt_.colormap, &settings_.map))
-    throw std::invalid_argument(fmt::format("--colormap {}: expected viridis or turbo", opt_.colormap));
+  settings_ = parse_render_options(opt_.style, opt_.color, opt_.display, opt_.colormap);
   int w = 0, h = 0;
   if (!parse_size(opt_.size, &w, &h))
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", opt_.size));
@@ -1061,7 +1046,8 @@ void add_view_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--set", o->sets, "Override a scene parameter, e.g. --set fluid.spacing=0.04");
   cmd->add_option("--threads", o->threads, "Solver threads (default: all cores but one)")->check(CLI::Range(0, 1024));
   cmd->add_option("--size", o->size, "Window size WxH")->capture_default_str();
-  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure or density")->capture_default_str();
+  cmd->add_option("--style", o->style, "surface (water surface; 2D: filled contour) or particles")->capture_default_str();
+  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure or density (particle style)")->capture_default_str();
   cmd->add_option("--display", o->display, "fluid, obstacles or all")->capture_default_str();
   cmd->add_option("--colormap", o->colormap, "viridis or turbo")->capture_default_str();
   cmd->add_flag("--paused", o->paused, "Start paused");

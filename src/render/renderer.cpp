@@ -18,55 +18,9 @@
 
 namespace rtsph::render {
 
-std::string_view color_mode_name(ColorMode m) {
-  switch (m) {
-    case ColorMode::Solid: return "solid";
-    case ColorMode::Speed: return "speed";
-    case ColorMode::Velocity: return "velocity";
-    case ColorMode::Pressure: return "pressure";
-    case ColorMode::Density: return "density";
-  }
-  return "solid";
-}
-
-bool parse_color_mode(std::string_view s, ColorMode* out) {
-  for (ColorMode m : {ColorMode::Solid, ColorMode::Speed, ColorMode::Velocity, ColorMode::Pressure,
-                      ColorMode::Density})
-    if (s == color_mode_name(m)) {
-      *out = m;
-      return true;
-    }
-  return false;
-}
-
-std::string_view display_mode_name(DisplayMode m) {
-  switch (m) {
-    case DisplayMode::Fluid: return "fluid";
-    case DisplayMode::FluidObstacles: return "obstacles";
-    case DisplayMode::All: return "all";
-  }
-  return "fluid";
-}
-
-bool parse_display_mode(std::string_view s, DisplayMode* out) {
-  for (DisplayMode m : {DisplayMode::Fluid, DisplayMode::FluidObstacles, DisplayMode::All})
-    if (s == display_mode_name(m)) {
-      *out = m;
-      return true;
-    }
-  return false;
-}
-
 namespace {
 
 constexpr int kLutSize = 256;
-
-float nice_step(float extent) {
-  float raw = std::max(extent, 1e-6f) / 10.0f;
-  float p = std::pow(10.0f, std::floor(std::log10(raw)));
-  float m = raw / p;
-  return (m < 1.5f ? 1.0f : m < 3.5f ? 2.0f : m < 7.5f ? 5.0f : 10.0f) * p;
-}
 
 float legend_scale(const RenderSettings& s, int height) {
   if (s.ui_scale > 0) return s.ui_scale;
@@ -83,7 +37,9 @@ std::string format_value(float v) {
 Renderer::Renderer()
     : particles_({"particle.vert", "particle.frag"}),
       lines_({"line.vert", "line.frag"}),
-      overlay_({"overlay.vert", "overlay.frag"}) {
+      overlay_({"overlay.vert", "overlay.frag"}),
+      surface_(std::make_unique<SurfacePass>()),
+      surface2d_(std::make_unique<Surface2dPass>()) {
   glGenVertexArrays(1, &fluid_vao_);
   glGenVertexArrays(1, &boundary_vao_);
   glGenVertexArrays(1, &line_vao_);
@@ -285,7 +241,7 @@ std::pair<float, float> Renderer::color_range(const RenderSettings& s) const {
 
 LegendLayout Renderer::legend_layout(int width, int height, const RenderSettings& s) const {
   LegendLayout L;
-  if (!s.legend || s.color == ColorMode::Solid) return L;
+  if (!s.legend || s.color == ColorMode::Solid || s.style == Style::Surface) return L;
   const float scale = legend_scale(s, height);
   const float margin = 10 * scale, bar_w = 12 * scale, title_h = 12 * scale;
   float bar_h = std::clamp(0.45f * static_cast<float>(height), 16.0f, 240.0f * scale);
@@ -452,10 +408,30 @@ void Renderer::set_particle_uniforms(const Camera& cam, const Mat4& view, const 
   glUniform1i(particles_.loc("u_lut"), 0);
 }
 
+void Renderer::draw_container(const Camera& cam, const Mat4& vp, bool faces, bool edges,
+                              DrawStats* st) {
+  // Translucent faces on the far side of the box (those the eye sees from the inside) and the
+  // twelve edges, depth-tested against the particles, not writing depth.
+  std::vector<LineVertex> f, e;
+  build_walls_3d(cam.eye(), lo_, hi_, &f, &e);
+  glEnable(GL_BLEND);
+  glDepthMask(GL_FALSE);
+  if (faces) draw_lines(f, GL_TRIANGLES, vp);
+  if (edges) draw_lines(e, GL_LINES, vp);
+  glDepthMask(GL_TRUE);
+  st->draw_calls += int(faces) + int(edges);
+}
+
 DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderSettings& s) {
   DrawStats st;
   width = std::max(width, 1);
   height = std::max(height, 1);
+  const bool three = dim_ == 3;
+  // Surface style, 3D: the opaque scene goes to a texture that the water refracts.
+  GLint target_fbo = 0;
+  glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &target_fbo);
+  const bool surface = s.style == Style::Surface && fluid_n_ > 0;
+  if (surface && three) surface_->begin_scene(width, height, s.time_passes);
   glViewport(0, 0, width, height);
   glClearColor(s.background.r, s.background.g, s.background.b, 1.0f);
   glClearDepth(1.0);
@@ -468,7 +444,6 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
 
   const float aspect = static_cast<float>(width) / static_cast<float>(height);
   const Mat4 view = cam.view(), proj = cam.projection(aspect), vp = proj * view;
-  const bool three = dim_ == 3;
   glDisable(GL_CULL_FACE);
   glDisable(GL_SCISSOR_TEST);
   glEnable(GL_BLEND);
@@ -485,38 +460,7 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
 
   // Ground grid (3D: the floor plane, 2D: behind the particles) and, in 2D, the walls.
   std::vector<LineVertex> lv;
-  if (s.grid) {
-    const float step = nice_step(extent);
-    const LineVertex base{0, 0, 0, 0.55f, 0.57f, 0.62f, three ? 0.35f : 0.18f};
-    if (three) {
-      const float cx = 0.5f * (lo_.x + hi_.x), cz = 0.5f * (lo_.z + hi_.z);
-      const float half = std::ceil(1.5f * extent / step) * step;
-      const float x0 = std::floor((cx - half) / step) * step, z0 = std::floor((cz - half) / step) * step;
-      const int lines = static_cast<int>(std::lround(2 * half / step)) + 1;
-      const float y = lo_.y - 1e-4f * extent;
-      for (int i = 0; i <= lines; ++i) {
-        float x = x0 + i * step, z = z0 + i * step;
-        LineVertex a = base, b = base;
-        a.x = x; a.y = y; a.z = z0; b.x = x; b.y = y; b.z = z0 + lines * step;
-        lv.push_back(a); lv.push_back(b);
-        a.x = x0; a.z = z; b.x = x0 + lines * step; b.z = z;
-        lv.push_back(a); lv.push_back(b);
-      }
-    } else {
-      const float x0 = std::floor(lo_.x / step) * step, x1 = std::ceil(hi_.x / step) * step;
-      const float y0 = std::floor(lo_.y / step) * step, y1 = std::ceil(hi_.y / step) * step;
-      for (float x = x0; x <= x1 + 0.5f * step; x += step) {
-        LineVertex a = base, b = base;
-        a.x = b.x = x; a.y = y0; b.y = y1;
-        lv.push_back(a); lv.push_back(b);
-      }
-      for (float y = y0; y <= y1 + 0.5f * step; y += step) {
-        LineVertex a = base, b = base;
-        a.y = b.y = y; a.x = x0; b.x = x1;
-        lv.push_back(a); lv.push_back(b);
-      }
-    }
-  }
+  if (s.grid) build_grid_lines(dim_, lo_, hi_, &lv);
   if (!lv.empty()) {
     glDepthMask(GL_FALSE);
     draw_lines(lv, GL_LINES, vp);
@@ -525,19 +469,8 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
   }
   if (!three && s.walls) {
     // 2D walls: a translucent band around the domain.
-    const float t = std::max(2.0f * s.particle_radius, 0.01f * extent);
-    const LineVertex c{0, 0, 0, 0.55f, 0.6f, 0.68f, 0.55f};
     std::vector<LineVertex> tri;
-    auto rect = [&](float ax, float ay, float bx, float by) {
-      LineVertex p[4] = {c, c, c, c};
-      p[0].x = ax; p[0].y = ay; p[1].x = bx; p[1].y = ay;
-      p[2].x = bx; p[2].y = by; p[3].x = ax; p[3].y = by;
-      tri.insert(tri.end(), {p[0], p[1], p[2], p[0], p[2], p[3]});
-    };
-    rect(lo_.x - t, lo_.y - t, hi_.x + t, lo_.y);
-    rect(lo_.x - t, hi_.y, hi_.x + t, hi_.y + t);
-    rect(lo_.x - t, lo_.y, lo_.x, hi_.y);
-    rect(hi_.x, lo_.y, hi_.x + t, hi_.y);
+    build_walls_2d(lo_, hi_, std::max(2.0f * s.particle_radius, 0.01f * extent), &tri);
     draw_lines(tri, GL_TRIANGLES, vp);
     ++st.draw_calls;
   }
@@ -547,6 +480,12 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
   // in 3D both write their true depth, so the order does not matter.
   if (s.display != DisplayMode::Fluid && solids_.draw(dim_, view, proj, cam.dim == 2, s.obstacle))
     ++st.draw_calls;
+  if (surface) {
+    // The container's far faces lie behind the water: part of the refracted scene.
+    if (three && s.walls) draw_container(cam, vp, true, false, &st);
+    st.draw_calls += draw_surface(cam, view, proj, width, height, GLuint(target_fbo), s);
+    st.particles_drawn += fluid_n_;
+  }
 
   // Particles: one draw for the fluid, one for the boundary particles (display All).
   particles_.use();
@@ -557,7 +496,7 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
   glUniform1i(particles_.loc("u_points"), points ? 1 : 0);
   glUniform1f(particles_.loc("u_viewport_h"), static_cast<float>(height));
   glUniform4f(particles_.loc("u_viewport"), 0, 0, static_cast<float>(width), static_cast<float>(height));
-  if (fluid_n_ > 0) {
+  if (fluid_n_ > 0 && !surface) {
     set_particle_uniforms(cam, view, proj, s.particle_radius, static_cast<int>(s.color), s.water,
                           color_range(s));
     draw_particles(fluid_vao_, 0, fluid_n_, points);
@@ -574,51 +513,7 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
   if (points) glDisable(GL_PROGRAM_POINT_SIZE);
   glEnable(GL_BLEND);
 
-  // 3D container: translucent faces on the far side of the box (those the eye sees from the
-  // inside) and the twelve edges, depth-tested against the particles, not writing depth.
-  if (three && s.walls) {
-    const Vec3f eye = cam.eye();
-    std::vector<LineVertex> faces, edges;
-    const LineVertex fc{0, 0, 0, 0.62f, 0.72f, 0.85f, 0.10f};
-    const LineVertex ec{0, 0, 0, 0.70f, 0.75f, 0.82f, 0.55f};
-    auto corner = [&](int bits) {
-      return Vec3f{bits & 1 ? hi_.x : lo_.x, bits & 2 ? hi_.y : lo_.y, bits & 4 ? hi_.z : lo_.z};
-    };
-    for (int axis = 0; axis < 3; ++axis)
-      for (int side = 0; side < 2; ++side) {
-        const float plane = side ? hi_[axis] : lo_[axis];
-        const float e = eye[axis];
-        const bool inside_sees = side ? e < plane : e > plane;
-        if (!inside_sees) continue;
-        const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
-        int b[4];
-        const int pairs[4][2] = {{0, 0}, {1, 0}, {1, 1}, {0, 1}};
-        for (int k = 0; k < 4; ++k)
-          b[k] = (side << axis) | (pairs[k][0] << a1) | (pairs[k][1] << a2);
-        LineVertex q[4];
-        for (int k = 0; k < 4; ++k) {
-          Vec3f p = corner(b[k]);
-          q[k] = fc;
-          q[k].x = p.x; q[k].y = p.y; q[k].z = p.z;
-        }
-        faces.insert(faces.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
-      }
-    for (int i = 0; i < 8; ++i)
-      for (int axis = 0; axis < 3; ++axis)
-        if (!(i & (1 << axis))) {
-          Vec3f p = corner(i), r = corner(i | (1 << axis));
-          LineVertex a = ec, b = ec;
-          a.x = p.x; a.y = p.y; a.z = p.z;
-          b.x = r.x; b.y = r.y; b.z = r.z;
-          edges.push_back(a);
-          edges.push_back(b);
-        }
-    glDepthMask(GL_FALSE);
-    draw_lines(faces, GL_TRIANGLES, vp);
-    draw_lines(edges, GL_LINES, vp);
-    glDepthMask(GL_TRUE);
-    st.draw_calls += 2;
-  }
+  if (three && s.walls) draw_container(cam, vp, !surface, true, &st);
 
   // Legend, in pixels on top of everything.
   glDisable(GL_DEPTH_TEST);

@@ -4,54 +4,27 @@
 // and one per boundary group, plus a few calls for grid, walls and legend — O(N), no
 // per-particle draw calls. 3D particles are ray-cast sphere impostors with true depth and
 // Blinn-Phong shading; 2D particles are discs under an orthographic camera. Obstacles are
-// drawn as solids from their geometry (SolidPass, one more call).
+// drawn as solids from their geometry (SolidPass, one more call). With Style::Surface the
+// fluid is drawn as a water surface instead: SurfacePass (3D, screen-space) or Surface2dPass
+// (2D, filled contour), from the same vertex buffer (renderer_surface.cpp).
 #include <epoxy/gl.h>
 
+#include <memory>
 #include <string>
-#include <string_view>
 #include <utility>
 #include <vector>
 
 #include "core/particles.h"
 #include "render/camera.h"
 #include "render/colormap.h"
+#include "render/render_settings.h"
+#include "render/scene_lines.h"
 #include "render/shader.h"
 #include "render/solids.h"
+#include "render/surface2d_pass.h"
+#include "render/surface_pass.h"
 
 namespace rtsph::render {
-
-enum class ColorMode { Solid, Speed, Velocity, Pressure, Density };
-/// Fluid: fluid only. FluidObstacles: fluid and obstacle solids. All: also every boundary
-/// particle (walls and the obstacles' Akinci samples), in the wall particle colour.
-enum class DisplayMode { Fluid, FluidObstacles, All };
-/// How particles are rasterised. Points: one point sprite per particle (fastest on software
-/// rasterisers, limited to the driver's largest point size); Quads: one instanced quad per
-/// particle (any size); Auto: points unless a particle could exceed the point size limit.
-enum class ParticlePrimitive { Auto, Points, Quads };
-
-std::string_view color_mode_name(ColorMode m);    // "solid", "speed", ...
-bool parse_color_mode(std::string_view s, ColorMode* out);
-std::string_view display_mode_name(DisplayMode m);  // "fluid", "obstacles", "all"
-bool parse_display_mode(std::string_view s, DisplayMode* out);
-
-struct RenderSettings {
-  ColorMode color = ColorMode::Solid;
-  ColorMap map = ColorMap::Viridis;
-  DisplayMode display = DisplayMode::FluidObstacles;
-  bool auto_range = true;       // else [range_min, range_max]
-  float range_min = 0, range_max = 1;
-  float particle_radius = 0.01f;  // m (drawn radius; half the spacing looks like a continuum)
-  float boundary_radius = 0;      // m, boundary particles (display All); 0 = particle_radius
-  bool legend = true;
-  bool grid = true;
-  bool walls = true;              // translucent container faces and outline
-  Rgb water{0.13f, 0.42f, 0.85f};
-  Rgb background{0.10f, 0.11f, 0.13f};
-  Rgb obstacle{0.62f, 0.62f, 0.60f};  // solids
-  Rgb wall_particles{0.45f, 0.47f, 0.52f};
-  float ui_scale = 0;             // legend text scale; 0 = from the image height
-  ParticlePrimitive primitive = ParticlePrimitive::Auto;
-};
 
 /// Where the legend's colour bar lies, in pixels (origin top-left): the top row shows the range
 /// maximum, the bottom row the minimum.
@@ -102,12 +75,12 @@ class Renderer {
   std::size_t obstacle_count() const { return obstacle_n_; }
   std::size_t wall_count() const { return wall_n_; }
   std::size_t solid_count() const { return solids_.count(); }
+  /// Surface style: CPU time per pass (RenderSettings::time_passes) and the test output switch
+  /// (0 shaded, 1 world normals as colour).
+  const SurfacePassTimes& surface_times() const { return surface_->times(); }
+  void set_surface_output(int output) { surface_->set_output(output); }
 
  private:
-  struct LineVertex {
-    float x, y, z;
-    float r, g, b, a;
-  };
   struct OverlayVertex {
     float x, y;
     float r, g, b, a;
@@ -122,9 +95,15 @@ class Renderer {
                              int color_mode, const Rgb& solid, std::pair<float, float> range);
   void draw_particles(GLuint vao, std::size_t first, std::size_t count, bool points);
   bool use_points(const Camera& cam, int height, const RenderSettings& s) const;
+  void draw_container(const Camera& cam, const Mat4& vp, bool faces, bool edges, DrawStats* st);
+  /// The fluid in the surface style (renderer_surface.cpp); leaves target_fbo bound.
+  int draw_surface(const Camera& cam, const Mat4& view, const Mat4& proj, int width, int height,
+                   GLuint target_fbo, const RenderSettings& s);
 
   Program particles_, lines_, overlay_;
   SolidPass solids_;
+  std::unique_ptr<SurfacePass> surface_;
+  std::unique_ptr<Surface2dPass> surface2d_;
   GLuint fluid_vao_ = 0, fluid_vbo_ = 0;
   GLuint boundary_vao_ = 0, boundary_vbo_ = 0;
   GLuint line_vao_ = 0, line_vbo_ = 0;

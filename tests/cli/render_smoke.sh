@@ -19,6 +19,16 @@ for disp in fluid obstacles all; do
 done
 if cmp -s "$work/d2_fluid.png" "$work/d2_all.png"; then echo "FAIL: display modes look identical"; fail=1; fi
 
+# The surface style is the default; --style particles draws something else.
+"$bin" render dam_break_2d --set fluid.spacing=0.05 --out "$work/d2_particles.png" --frames 3 --fps 30 --size 160x96 \
+  --color speed --display fluid --style particles --quiet >/dev/null
+check test $? -eq 0
+if cmp -s "$work/d2_fluid.png" "$work/d2_particles.png"; then echo "FAIL: --style particles looks like the default"; fail=1; fi
+"$bin" render dam_break_3d --set fluid.spacing=0.1 --out "$work/d3_surface.png" --frames 2 --size 128x72 --style surface \
+  --time-passes --quiet 2>"$work/passes" >/dev/null
+check test $? -eq 0
+check grep -q "surface passes" "$work/passes"
+
 # A directory of frames.
 "$bin" render dam_break_2d --set fluid.spacing=0.05 --out "$work/frames" --frames 3 --fps 60 --size 96x64 --color pressure --quiet >/dev/null
 check test $? -eq 0
@@ -37,7 +47,7 @@ else
 fi
 
 # Bad options: exit 2, one line.
-for args in "--size 12" "--color rainbow" "--display some" "--fps 0"; do
+for args in "--size 12" "--color rainbow" "--display some" "--fps 0" "--style glass"; do
   "$bin" render dam_break_2d --set fluid.spacing=0.05 --out "$work/x.png" --frames 1 $args 2>"$work/err" >/dev/null
   rc=$?
   check test $rc -ne 0

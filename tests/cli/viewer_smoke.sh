@@ -114,6 +114,8 @@ scroll 1
 key 8                # colour by speed
 key tab
 screenshot $work/dam.png
+key f                # particles (the surface is the default)
+screenshot $work/dam_particles.png
 wait 2
 quit
 EOS
@@ -122,6 +124,9 @@ rc=$?
 echo "$out"
 [ $rc -eq 0 ] || { echo "FAIL: viewer (dam_break_3d) exited with $rc"; fail=1; }
 not_blank "$work/dam.png" || fail=1
+not_blank "$work/dam_particles.png" || fail=1
+if cmp -s "$work/dam.png" "$work/dam_particles.png"; then echo "FAIL: key f did not change the style"; fail=1; fi
+echo "$out" | grep -q "style: particles" || { echo "FAIL: key f did not report the style"; fail=1; }
 
 # 2D scene with an obstacle: Ctrl-drag and q/w a/s keys move it.
 cat >"$work/obst.txt" <<EOS

@@ -1,0 +1,71 @@
+#pragma once
+// Screen-space fluid surface in 3D (van der Laan, Green & Sainz 2009; the depth filter after
+// Truong & Yuksel 2018). Per frame:
+//   scene      the opaque scene (floor grid, obstacles) into a colour + depth texture at full
+//              resolution (drawn by Renderer between begin_scene() and draw());
+//   splat      one draw of the fluid particles into two images (surface resolution): the
+//              nearest sphere's eye distance (blend MAX of its inverse) and the thickness,
+//              soft additive splats summing to the depth of water along each ray;
+//   smooth     a separable bilateral filter of the depth, x then y, radius ∝ screen size;
+//   normal     normals from the smoothed depth, stored with it;
+//   shade      full resolution into the target: Fresnel mix of a sky gradient and the
+//              refracted scene, Beer–Lambert absorption, highlight, spray; writes depth so
+//              later geometry (walls, boundary particles) sorts with it.
+// The fluid passes run at RenderSettings::surface_scale of the frame's resolution.
+#include <functional>
+
+#include "render/math.h"
+#include "render/render_settings.h"
+#include "render/shader.h"
+#include "render/surface_target.h"
+
+namespace rtsph::render {
+
+/// CPU time of each pass, summed over `frames` (RenderSettings::time_passes; glFinish between
+/// passes, so the sum exceeds the pipelined frame time a little; the first frame, which
+/// compiles the shaders, is not counted).
+struct SurfacePassTimes {
+  double scene_s = 0, splat_s = 0, smooth_s = 0, normal_s = 0, shade_s = 0;
+  long frames = 0;
+};
+
+/// What the surface needs of the frame; draw_fluid issues the fluid particles' draw call with
+/// the currently bound program (particle.vert's attributes and uniforms).
+struct SurfaceFrame {
+  Mat4 view, proj;
+  int width = 1, height = 1;      // the target's size (pixels)
+  GLuint target_fbo = 0;
+  bool points = true;             // particles go out as point sprites
+  std::function<void()> draw_fluid;
+};
+
+class SurfacePass {
+ public:
+  SurfacePass();  // needs a current GL context
+  ~SurfacePass();
+  SurfacePass(const SurfacePass&) = delete;
+  SurfacePass& operator=(const SurfacePass&) = delete;
+
+  /// Binds the full-resolution scene target; the caller clears it and draws the opaque scene.
+  void begin_scene(int width, int height, bool time_passes);
+  /// Runs depth, thickness, smoothing and shading; leaves the target bound with its viewport.
+  /// Returns the number of draw calls.
+  int draw(const SurfaceFrame& f, const RenderSettings& s);
+  /// 0: shaded; 1: world-space normals as colours 0.5 + 0.5·n (tests).
+  void set_output(int output) { output_ = output; }
+  const SurfacePassTimes& times() const { return times_; }
+
+ private:
+  void lap(double* into);
+
+  Program splat_, smooth_, normal_, shade_;
+  TextureTarget scene_, splat_target_, smooth_a_, smooth_b_, normal_target_;
+  GLuint empty_vao_ = 0;
+  int output_ = 0;
+  bool timing_ = false;
+  bool warm_ = false;  // a frame has been drawn
+  double t_last_ = 0;
+  SurfacePassTimes times_;
+};
+
+}  // namespace rtsph::render

@@ -281,9 +281,11 @@ class Simulation(_rtsph._Simulation):
 
 
 def render(sim: Simulation, path: Optional[PathLike] = None, size: Tuple[int, int] = (1280, 720),
-           color: str = "speed", display: str = "obstacles", colormap: str = "viridis") -> np.ndarray:
+           color: str = "speed", display: str = "obstacles", colormap: str = "viridis",
+           style: str = "surface") -> np.ndarray:
     """Draws the simulation as ``rtsph render`` does (headless EGL) and returns the image as an
-    (H, W, 4) uint8 array; with ``path``, also writes it as PNG."""
+    (H, W, 4) uint8 array; with ``path``, also writes it as PNG. ``style``: "surface" (the water
+    surface, as the CLI's default) or "particles" (which ``color`` applies to)."""
     width, height = size
-    return _rtsph._render(sim, int(width), int(height), color, display, colormap,
+    return _rtsph._render(sim, int(width), int(height), color, display, colormap, style,
                           "" if path is None else os.fspath(path))

@@ -21,9 +21,10 @@ namespace rtsph::py {
 using Image = nb::ndarray<nb::numpy, std::uint8_t>;
 
 Image render_frame(PySimulation& self, int width, int height, const std::string& color,
-                   const std::string& display, const std::string& colormap, const std::string& path) {
+                   const std::string& display, const std::string& colormap, const std::string& style,
+                   const std::string& path) {
 #ifndef RTSPH_HAVE_RENDER
-  (void)self; (void)width; (void)height; (void)color; (void)display; (void)colormap; (void)path;
+  (void)self; (void)width; (void)height; (void)color; (void)display; (void)colormap; (void)style; (void)path;
   throw std::runtime_error("render: this build of rtsph has no renderer (RTSPH_BUILD_VIEWER=OFF)");
 #else
   if (width < 16 || height < 16 || width > 8192 || height > 8192)
@@ -35,6 +36,8 @@ Image render_frame(PySimulation& self, int width, int height, const std::string&
     throw std::invalid_argument(fmt::format("render: display '{}': expected fluid, obstacles or all", display));
   if (!render::parse_colormap(colormap, &settings.map))
     throw std::invalid_argument(fmt::format("render: colormap '{}': expected viridis or turbo", colormap));
+  if (!render::parse_style(style, &settings.style))
+    throw std::invalid_argument(fmt::format("render: style '{}': expected surface or particles", style));
   auto* pixels = new std::vector<unsigned char>();
   nb::capsule owner(pixels, [](void* p) noexcept { delete static_cast<std::vector<unsigned char>*>(p); });
   {
@@ -69,7 +72,7 @@ Image render_frame(PySimulation& self, int width, int height, const std::string&
 
 void bind_render(nb::module_& m) {
   m.def("_render", &render_frame, nb::arg("sim"), nb::arg("width"), nb::arg("height"), nb::arg("color"),
-        nb::arg("display"), nb::arg("colormap"), nb::arg("path"));
+        nb::arg("display"), nb::arg("colormap"), nb::arg("style"), nb::arg("path"));
 }
 
 }  // namespace rtsph::py

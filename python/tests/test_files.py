@@ -66,13 +66,19 @@ def test_export_writes_the_cli_frames(tank, tmp_path):
 
 def test_render_returns_a_picture_of_the_water(tank, tmp_path):
     sim = rtsph.Simulation(tank, threads=1)
-    img = rtsph.render(sim, size=(160, 120), color="solid")
+    img = rtsph.render(sim, size=(160, 120), color="solid", style="particles")
     assert img.shape == (120, 160, 4) and img.dtype == np.uint8
     # Not blank: the water's colour covers part of the frame, the background the rest.
     colours, counts = np.unique(img.reshape(-1, 4), axis=0, return_counts=True)
     assert len(colours) > 2 and counts.max() < img.shape[0] * img.shape[1]
-    again = rtsph.render(sim, tmp_path / "f.png", size=(160, 120), color="solid")
+    again = rtsph.render(sim, tmp_path / "f.png", size=(160, 120), color="solid", style="particles")
     assert np.array_equal(img, again)
     assert (tmp_path / "f.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
     with pytest.raises(ValueError, match="color"):
         rtsph.render(sim, color="plaid")
+    with pytest.raises(ValueError, match="style"):
+        rtsph.render(sim, style="oil")
+    # The default style is the water surface: a picture too, and not the particles' one.
+    surface = rtsph.render(sim, size=(160, 120))
+    assert surface.shape == img.shape and len(np.unique(surface.reshape(-1, 4), axis=0)) > 2
+    assert not np.array_equal(surface, img)

@@ -114,7 +114,7 @@ void BM_DensityPairLoop(benchmark::State& state) {
         float xi[D];
         for (int a = 0; a < D; ++a) xi[a] = s.ptr[a][i];
         f8 w{};
-        for_each_candidate_batch<D>(s.grid, cells[i], s.ptr, xi, support2,
+        for_each_candidate_batch<D, false>(s.grid, cells[i], s.ptr, xi, support2,
                                     [&](uint32_t, const f8*, f8 r2, i8 m) {
                                       w += simd::select(m, K.value(r2), f8{});
                                     });
@@ -130,7 +130,7 @@ void BM_DensityPairLoop(benchmark::State& state) {
   for (std::size_t i = 0; i < c.n; ++i) {
     float xi[D];
     for (int a = 0; a < D; ++a) xi[a] = s.ptr[a][i];
-    for_each_candidate_batch<D>(s.grid, cells[i], s.ptr, xi, support2,
+    for_each_candidate_batch<D, false>(s.grid, cells[i], s.ptr, xi, support2,
                                 [&](uint32_t, const f8*, f8, i8 m) {
                                   for (int l = 0; l < simd::kWidth; ++l) nb += m[l] != 0;
                                 });

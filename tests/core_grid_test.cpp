@@ -411,7 +411,7 @@ void check_batches(const Built<D>& b, std::size_t n, float cell, const std::stri
     std::vector<std::pair<uint32_t, uint32_t>> ranges;
     b.grid.for_each_range(cell_i, [&](uint32_t s, uint32_t e) { ranges.emplace_back(s, e); });
     std::size_t selected = 0, batches = 0;
-    for_each_candidate_batch<D>(b.grid, cell_i, b.ptr, xi, support2,
+    for_each_candidate_batch<D, false>(b.grid, cell_i, b.ptr, xi, support2,
                                 [&](uint32_t j, const f8* d, f8 r2, i8 m) {
       ++batches;
       uint32_t end = 0;

@@ -54,7 +54,7 @@ void check_periodic_pairs(const bool periodic[D], unsigned seed) {
     std::vector<uint32_t> found, expected;
     float xi[D];
     for (int k = 0; k < D; ++k) xi[k] = xs[k][i];
-    for_each_candidate_batch<D>(grid, grid.sorted_cells()[i], xs, xi, support * support,
+    for_each_candidate_batch<D, true>(grid, grid.sorted_cells()[i], xs, xi, support * support,
                                 [&](uint32_t j, const simd::f8*, simd::f8, simd::i8 m) {
                                   for (int l = 0; l < 8; ++l)
                                     if (m[l]) found.push_back(j + uint32_t(l));

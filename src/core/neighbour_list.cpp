@@ -1,5 +1,7 @@
 #include "core/neighbour_list.h"
 
+#include <type_traits>
+
 #include <algorithm>
 #include <atomic>
 
@@ -24,6 +26,8 @@ void NeighbourList<D>::build(const UniformGrid<D>& grid, const Real* const xs[D]
     idx_.resize(n * stride_);
     std::atomic<uint32_t> largest{0};
     const std::size_t stride = stride_;
+    // The walk compiled for the grid's kind (plain or periodic), chosen once per build.
+    auto pass = [&](auto periodic) {
     pool.parallel_for(n, [&](std::size_t b, std::size_t e) {
       uint32_t local_largest = 0;
       for (std::size_t i = b; i < e; ++i) {
@@ -31,7 +35,7 @@ void NeighbourList<D>::build(const UniformGrid<D>& grid, const Real* const xs[D]
         for (int k = 0; k < D; ++k) xi[k] = xs[k][i];
         uint32_t* out = idx_.data() + i * stride;
         uint32_t c = 0;
-        for_each_candidate_batch<D>(grid, cells[i], xs, xi, r2,
+        for_each_candidate_batch<D, decltype(periodic)::value>(grid, cells[i], xs, xi, r2,
                                     [&](uint32_t j, const f8*, f8, i8 m) {
                                       const unsigned bits = simd::bits(m);
                                       // Branch-free left-pack of the lanes in range: a bit loop
@@ -53,6 +57,11 @@ void NeighbourList<D>::build(const UniformGrid<D>& grid, const Real* const xs[D]
       uint32_t seen = largest.load(std::memory_order_relaxed);
       while (local_largest > seen && !largest.compare_exchange_weak(seen, local_largest)) {}
     }, ThreadPool::kPairs);
+    };
+    if (grid.any_periodic())
+      pass(std::true_type{});
+    else
+      pass(std::false_type{});
     const std::size_t need = (std::size_t(largest.load()) + 7u) & ~std::size_t(7);
     if (need <= stride_) break;
     stride_ = need;

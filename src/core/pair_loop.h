@@ -4,30 +4,58 @@
 // d[k] = x_i - x_j, the squared distances, and a mask of lanes that are in range and inside the
 // kernel support. Lanes past a range end read the array's padding and are masked off. Along
 // periodic axes d is the minimum image.
+#include <type_traits>
+
 #include "core/grid.h"
+#include "core/kernels.h"
 #include "core/simd.h"
 
 namespace rtsph {
 
-// Forced inlining keeps the caller's accumulators in registers across batches.
+/// A kernel that also carries, in its type, whether the grids have periodic axes. Pair walks take
+/// it as a template flag, so each sum is compiled once for the plain stencil (the fast path, as
+/// without periodic axes) and once for the wrapped one, and the choice is made once per sum.
+template <class K, bool P>
+struct WithPeriodic : K {
+  static constexpr bool periodic = P;
+  explicit WithPeriodic(const K& k) : K(k) {}
+};
+template <class K>
+inline constexpr bool periodic_v = std::decay_t<K>::periodic;
+
+/// with_kernel (kernels.h) plus the periodic flag: fn gets a WithPeriodic<kernel, periodic>.
 template <int D, class Fn>
+decltype(auto) with_kernel(KernelType type, double h, bool periodic, Fn&& fn) {
+  return with_kernel<D>(type, h, [&](const auto& k) -> decltype(auto) {
+    using Kt = std::decay_t<decltype(k)>;
+    if (periodic) return fn(WithPeriodic<Kt, true>(k));
+    return fn(WithPeriodic<Kt, false>(k));
+  });
+}
+
+// Forced inlining keeps the caller's accumulators in registers across batches.
+template <int D, bool kPeriodic, class Fn>
 [[gnu::always_inline]] inline void for_each_candidate_batch(const UniformGrid<D>& grid, uint32_t cell,
                                      const Real* const xs[D], const Real xi[D], Real support2,
                                      Fn&& fn) {
   using simd::f8;
   using simd::i8;
-  grid.for_each_range(cell, [&](uint32_t begin, uint32_t end) {
+  auto batches = [&](uint32_t begin, uint32_t end) {
     for (uint32_t j = begin; j < end; j += simd::kWidth) {
       f8 d[D];
       for (int k = 0; k < D; ++k) d[k] = xi[k] - simd::load(xs[k] + j);
-      if (grid.any_periodic()) grid.wrap_offsets(d);  // minimum image across a seam
+      if constexpr (kPeriodic) grid.wrap_offsets(d);  // minimum image across a seam
       f8 r2 = f8{};
       for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
       const i8 in_range = simd::lane_index() < int(end - j);
       const i8 mask = in_range & (r2 < support2);
       if (simd::any(mask)) fn(j, d, r2, mask);
     }
-  });
+  };
+  if constexpr (kPeriodic)
+    grid.for_each_periodic_range(cell, batches);
+  else
+    grid.for_each_flat_range(cell, batches);
 }
 
 }  // namespace rtsph

@@ -51,7 +51,7 @@ void Dfsph<D>::compute_factors() {
   for (int k = 0; k < D; ++k) grad_out[k] = pair_grad_[k].data();
   // Below this the particle has (almost) no neighbours: no pressure can act on it.
   const double tiny = 1e-6 * this->lattice_gradient_sum();
-  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+  with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D];
@@ -69,7 +69,7 @@ void Dfsph<D>::compute_factors() {
           }
           slot += simd::kWidth;
         });
-        for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
+        for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                     [&](auto j, const f8* d, f8 r2, i8 m) {
                                       const f8 G = simd::select(m, simd::at(psi, j) * K.grad_factor(r2), f8{});
                                       cnt += simd::select(m, f8{} + 1.0f, f8{});

@@ -32,17 +32,17 @@ void FluidWorld<D>::compute_density() {
   [[maybe_unused]] const Real* const psi = pa.psi;
   const uint32_t* const cells = pa.cells;
   Real* rho = fluid_.rho.data();
-  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+  with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
         f8 wf{}, wb{};
-        this->for_each_fluid_batch(i, fx, xi, support2,
+        this->template for_each_fluid_batch<periodic_v<decltype(K)>>(i, fx, xi, support2,
                                     [&](auto, const f8*, f8 r2, i8 m) {
                                       wf += simd::select(m, K.value(r2), f8{});
                                     });
-        for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
+        for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                     [&](auto j, const f8*, f8 r2, i8 m) {
                                       wb += simd::select(m, simd::at(psi, j) * K.value(r2), f8{});
                                     });
@@ -99,7 +99,7 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
   const Brush brush = brush_;
   const Vec<D> brush_c = truncate<D>(brush.center);
 
-  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+  with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D], vi[D];
@@ -108,7 +108,7 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
         const Real Pbm = mirror ? Pi : Real(0);
         f8 acc[D] = {};
         if constexpr (kPressure || kViscosity) {
-        this->for_each_fluid_batch(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
+        this->template for_each_fluid_batch<periodic_v<decltype(K)>>(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
               const f8 G = K.grad_factor(r2);  // ∇W = G · d
               f8 vij[D], vr = f8{};
               for (int k = 0; k < D; ++k) {
@@ -133,7 +133,7 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
         if (kPressure || kViscosity || hydro) {
         Vec<D> pos;
         for (int k = 0; k < D; ++k) pos[k] = xi[k];
-        for_each_candidate_batch<D>(
+        for_each_candidate_batch<D, periodic_v<decltype(K)>>(
             ctx_.boundary_grid, ctx_.boundary_grid.cell_of(pos), bx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
               const f8 G = K.grad_factor(r2);
               f8 vib[D], vr = f8{};
@@ -206,13 +206,13 @@ void FluidWorld<D>::extrapolate_boundary_pressure() {
   const Vec3d accel = external_acceleration();
   for (int k = 0; k < D; ++k) g[k] = Real(accel[k]);
   Real* out = ctx_.boundary_p_over_rho2.data();
-  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+  with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
         Real xb[D];
         for (int k = 0; k < D; ++k) xb[k] = bx[k][i];
         f8 sw{}, sp{}, sg{};
-        for_each_candidate_batch<D>(ctx_.fluid_grid, cells[i], fx, xb, support2,
+        for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.fluid_grid, cells[i], fx, xb, support2,
                                     [&](auto j, const f8* d, f8 r2, i8 m) {
                                       const f8 w = simd::select(m, K.value(r2), f8{});
                                       f8 gd = f8{};
@@ -276,7 +276,7 @@ void FluidWorld<D>::compute_boundary_psi() {
   const Real* bx[D];
   for (int k = 0; k < D; ++k) bx[k] = boundary_.x[k].data();
   const int32_t* owner = boundary_.owner.data();
-  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+  with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     const double gamma = flat_wall_calibration<D>(K, spec_.spacing, std::max(1, spec_.boundary_layers),
                                                   prm_.support);
     const double scale = gamma * prm_.rho0;

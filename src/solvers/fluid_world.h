@@ -188,14 +188,14 @@ class FluidWorld : public Simulation {
   void keep_neighbour_lists() { keep_lists_ = true; build_neighbour_lists(); }
   /// The fluid pair walk every sum uses: particle i's list when one is current, else its
   /// grid cells. fn(j, d, r2, mask) reads neighbour fields with simd::at(array, j).
-  template <class Fn>
+  template <bool kPeriodic, class Fn>
   [[gnu::always_inline]] void for_each_fluid_batch(std::size_t i, const Real* const xs[D],
                                                    const Real xi[D], Real support2, Fn&& fn) const {
     if (lists_current())
       for_each_listed_batch<D>(ctx_.fluid_list, i, xs, xi, support2, fn);
     else
-      for_each_candidate_batch<D>(ctx_.fluid_grid, ctx_.fluid_grid.sorted_cells()[i], xs, xi,
-                                  support2, fn);
+      for_each_candidate_batch<D, kPeriodic>(ctx_.fluid_grid, ctx_.fluid_grid.sorted_cells()[i], xs, xi,
+                                             support2, fn);
   }
   void compute_density();                // ρᵢ = Σⱼ mⱼ Wᵢⱼ + Σ_b Ψ_b W_ib (Akinci 2012, eq. 6)
   void measure_density_error();          // max and mean compression (ρ-ρ0)/ρ0 ≥ 0

@@ -145,7 +145,7 @@ void Pbf<D>::compute_lambda() {
   Real* rho = fluid_.rho.data();
   Real* lambda = lambda_.data();
   Real* lambda_sum = lambda_sum_.data();
-  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+  with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     const Real inv_w_dq = Real(1.0 / double(K.value(float(dq * dq))));
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
@@ -169,7 +169,7 @@ void Pbf<D>::compute_lambda() {
           simd::store(scorr_out + slot, qn);
           slot += simd::kWidth;
         });
-        for_each_candidate_batch<D>(ctx_.boundary_grid, cells[i], bx, xi, support2,
+        for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                     [&](auto j, const f8* d, f8 r2, i8 m) {
                                       const f8 w = simd::select(m, simd::at(psi, j), f8{});
                                       wb += w * K.value(r2);

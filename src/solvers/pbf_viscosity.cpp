@@ -42,13 +42,13 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
   [[maybe_unused]] const Real* const psi = pa.psi;
   const uint32_t* const cells = pa.cells;
   const Real* rho = fluid_.rho.data();
-  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+  with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D], vi[D];
         for (int k = 0; k < D; ++k) { xi[k] = fx[k][i]; vi[k] = fv[k][i]; }
         f8 dv[D] = {}, dvb[D] = {}, om[kOmega] = {}, wf{}, wb{};
-        this->for_each_fluid_batch(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
+        this->template for_each_fluid_batch<periodic_v<decltype(K)>>(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
               const f8 vol = simd::select(m, mass * simd::rcp(simd::at(rho, j)), f8{});
               f8 vji[D];
               for (int k = 0; k < D; ++k) vji[k] = simd::at(fv[k], j) - vi[k];
@@ -67,7 +67,7 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
                 }
               }
             });
-        for_each_candidate_batch<D>(
+        for_each_candidate_batch<D, periodic_v<decltype(K)>>(
             ctx_.boundary_grid, cells[i], bx, xi, support2, [&](auto j, const f8*, f8 r2, i8 m) {
               const f8 w = simd::select(m, simd::at(psi, j) * K.value(r2), f8{});
               wb += w;
@@ -93,7 +93,7 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
         for (int k = 0; k < kOmega; ++k) { wi[k] = omega_[k][i]; wi2 += wi[k] * wi[k]; }
         const Real wabs = std::sqrt(wi2);
         f8 eta[D] = {};
-        this->for_each_fluid_batch(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
+        this->template for_each_fluid_batch<periodic_v<decltype(K)>>(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
               f8 wj2 = f8{};
               for (int k = 0; k < kOmega; ++k) {
                 const f8 w = simd::at(omega_[k].data(), j);

@@ -10,6 +10,7 @@ void gather(AlignedArray<T>& arr, const uint32_t* order, AlignedArray<Real>& tmp
             const ThreadPool& pool) {
   static_assert(sizeof(T) == sizeof(Real));
   const std::size_t n = arr.size();
+  if (n == 0) return;  // e.g. no boundary at all (every axis periodic): memcpy wants real pointers
   tmp.resize(n);
   T* dst = reinterpret_cast<T*>(tmp.data());
   const T* src = arr.data();

@@ -36,6 +36,8 @@ class UniformGrid {
   Real period(int axis) const { return period_[axis]; }
   const Vec<D>& origin() const { return origin_; }
   int dim(int axis) const { return dims_[axis]; }
+  /// 1 / cell edge along `axis`, in double: cell_of's arithmetic (the GPU backend repeats it).
+  double inv_cell(int axis) const { return inv_cell_[axis]; }
 
   uint32_t cell_of(const Vec<D>& p) const;
 

@@ -134,6 +134,9 @@ class FluidWorld : public Simulation {
   }
   /// Method scalars that a checkpoint must carry (iteration counts, warm-start state).
   virtual void add_method_scalars(std::vector<StateField>&) {}
+  /// Kinetic and potential energy and the maximum speed for stats() (the GPU backend reduces
+  /// them where its particles live).
+  virtual void measure_energies(SimStats& s) const;
   /// Method figures for the statistics (iterations, residual errors).
   virtual void add_method_stats(SimStats&) const {}
   /// Whether edited positions (overwrite_fluid) must be sorted into cells before the next step:
@@ -173,6 +176,10 @@ class FluidWorld : public Simulation {
   /// Gravity plus the scene's body force: the uniform acceleration every particle feels.
   Vec3d external_acceleration() const { return spec_.gravity + spec_.body_force; }
   void move_obstacles(double t_new, double dt);  // prescribed or user-driven rigid motion
+  /// move_obstacles' first half: the obstacles' poses and velocities at t_new. True when their
+  /// samples must be moved (then call stop_user_driven_obstacles() after moving them).
+  bool update_obstacle_states(double t_new, double dt);
+  void stop_user_driven_obstacles();
   void emit_particles(double t_new);     // nozzle layers due by t_new
   void put_back_escaped();               // the safety net (a diagnostic): nothing is ever lost
   void advance_scene(double t_new, double dt) {  // the three above, timed as integration

@@ -41,7 +41,30 @@ void FluidWorld<D>::build_boundary() {
 
 template <int D>
 void FluidWorld<D>::move_obstacles(double t_new, double dt) {
-  if (obstacles_.empty()) return;
+  if (!update_obstacle_states(t_new, dt)) return;
+  pool_.parallel_for(boundary_.size(), [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      const int o = boundary_.owner[i];
+      if (o < 0) continue;
+      const auto& st = obstacles_[o];
+      Vec3d local{};
+      for (int k = 0; k < D; ++k) local[k] = boundary_.local[k][i];
+      const Vec3d x = st.pose.apply(local), r = x - st.pose.center, w = st.angular_velocity;
+      // v = v_c + ω × r; in 2D only ω_z acts.
+      const Vec3d v = st.velocity + Vec3d{{w[1] * r[2] - w[2] * r[1], w[2] * r[0] - w[0] * r[2],
+                                           w[0] * r[1] - w[1] * r[0]}};
+      for (int k = 0; k < D; ++k) {
+        boundary_.x[k][i] = Real(x[k]);
+        boundary_.v[k][i] = Real(v[k]);
+      }
+    }
+  });
+  stop_user_driven_obstacles();
+}
+
+template <int D>
+bool FluidWorld<D>::update_obstacle_states(double t_new, double dt) {
+  if (obstacles_.empty()) return false;
   bool any_moved = false;
   for (std::size_t o = 0; o < obstacles_.size(); ++o) {
     auto& st = obstacles_[o];
@@ -63,24 +86,11 @@ void FluidWorld<D>::move_obstacles(double t_new, double dt) {
     }
     any_moved |= st.user_driven || sp.motion != MotionKind::Static;
   }
-  if (!any_moved && dt > 0) return;
-  pool_.parallel_for(boundary_.size(), [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) {
-      const int o = boundary_.owner[i];
-      if (o < 0) continue;
-      const auto& st = obstacles_[o];
-      Vec3d local{};
-      for (int k = 0; k < D; ++k) local[k] = boundary_.local[k][i];
-      const Vec3d x = st.pose.apply(local), r = x - st.pose.center, w = st.angular_velocity;
-      // v = v_c + ω × r; in 2D only ω_z acts.
-      const Vec3d v = st.velocity + Vec3d{{w[1] * r[2] - w[2] * r[1], w[2] * r[0] - w[0] * r[2],
-                                           w[0] * r[1] - w[1] * r[0]}};
-      for (int k = 0; k < D; ++k) {
-        boundary_.x[k][i] = Real(x[k]);
-        boundary_.v[k][i] = Real(v[k]);
-      }
-    }
-  });
+  return any_moved || dt <= 0;
+}
+
+template <int D>
+void FluidWorld<D>::stop_user_driven_obstacles() {
   // A user-driven obstacle stops once it reaches the target.
   for (auto& st : obstacles_)
     if (st.user_driven) st.velocity = {};
@@ -143,6 +153,8 @@ void FluidWorld<D>::set_live_parameters(const SimSpec& s) { copy_live_parameters
 #define RTSPH_INSTANTIATE(D)                                   \
   template void FluidWorld<D>::build_boundary();                    \
   template void FluidWorld<D>::move_obstacles(double, double);      \
+  template bool FluidWorld<D>::update_obstacle_states(double, double); \
+  template void FluidWorld<D>::stop_user_driven_obstacles();        \
   template void FluidWorld<D>::emit_particles(double);              \
   template void FluidWorld<D>::move_obstacle(int, const Vec3d&);    \
   template Vec3d FluidWorld<D>::obstacle_center(int) const;         \

@@ -29,20 +29,7 @@ BoundaryView FluidWorld<D>::boundary() const {
 }
 
 template <int D>
-SimStats FluidWorld<D>::stats() const {
-  SimStats s;
-  s.fluid_particles = fluid_.size();
-  s.boundary_particles = boundary_.size();
-  s.steps = steps_;
-  s.time_s = time_;
-  s.dt_s = dt_;
-  s.c0 = prm_.c0;
-  s.h = prm_.h;
-  s.method = spec_.method;
-  s.density_error = density_error_;
-  s.mean_density_error = mean_density_error_;
-  s.max_density_error = max_density_error_;
-  s.particles_put_back = put_back_;
+void FluidWorld<D>::measure_energies(SimStats& s) const {
   struct Energy {
     double ke = 0, pe = 0, v2max = 0;
     Energy& operator+=(const Energy& o) {
@@ -67,6 +54,24 @@ SimStats FluidWorld<D>::stats() const {
   s.kinetic_energy_j = e.ke;
   s.potential_energy_j = e.pe;
   s.max_speed = std::sqrt(e.v2max);
+}
+
+template <int D>
+SimStats FluidWorld<D>::stats() const {
+  SimStats s;
+  s.fluid_particles = fluid_.size();
+  s.boundary_particles = boundary_.size();
+  s.steps = steps_;
+  s.time_s = time_;
+  s.dt_s = dt_;
+  s.c0 = prm_.c0;
+  s.h = prm_.h;
+  s.method = spec_.method;
+  s.density_error = density_error_;
+  s.mean_density_error = mean_density_error_;
+  s.max_density_error = max_density_error_;
+  s.particles_put_back = put_back_;
+  measure_energies(s);
   s.bytes = fluid_.bytes() + boundary_.bytes() + ctx_.bytes();
   for (const auto& f : method_fields_) s.bytes += f.array->bytes();
   add_method_stats(s);
@@ -177,6 +182,7 @@ Pose FluidWorld<D>::obstacle_transform(int index) const {
   template ParticleView FluidWorld<D>::fluid() const;                        \
   template BoundaryView FluidWorld<D>::boundary() const;                     \
   template SimStats FluidWorld<D>::stats() const;                            \
+  template void FluidWorld<D>::measure_energies(SimStats&) const;            \
   template void FluidWorld<D>::prepare_state(std::size_t);                   \
   template std::vector<StateField> FluidWorld<D>::state_fields();            \
   template void FluidWorld<D>::state_loaded();                               \

@@ -50,16 +50,20 @@ void Wcsph<D>::update_forces() {
   }
 }
 
-// dt = min(cfl·h/(c0 + |v|max), 0.25·√(h/|a|max), 0.125·h²/ν), at most max_dt.
+double wcsph_time_step(const SimSpec& s, const ResolvedParams& prm, double v2max, double a2max,
+                       double viscous_limit) {
+  if (s.time_step_mode == TimeStepMode::Fixed) return s.dt;
+  const double h = prm.h;
+  double dt = std::min(s.max_dt, s.cfl * h / (prm.c0 + std::sqrt(v2max)));
+  if (a2max > 0) dt = std::min(dt, 0.25 * std::sqrt(h / std::sqrt(a2max)));
+  return std::min(dt, viscous_limit);
+}
+
 template <int D>
 double Wcsph<D>::choose_time_step() const {
-  const SimSpec& s = this->spec_;
-  if (s.time_step_mode == TimeStepMode::Fixed) return s.dt;
+  if (this->spec_.time_step_mode == TimeStepMode::Fixed) return this->spec_.dt;
   const auto m = this->max_speed_and_acceleration();
-  const double h = this->prm_.h;
-  double dt = std::min(s.max_dt, s.cfl * h / (this->prm_.c0 + std::sqrt(m.v2)));
-  if (m.a2 > 0) dt = std::min(dt, 0.25 * std::sqrt(h / std::sqrt(m.a2)));
-  return std::min(dt, this->viscous_dt_limit());
+  return wcsph_time_step(this->spec_, this->prm_, m.v2, m.a2, this->viscous_dt_limit());
 }
 
 template <int D>

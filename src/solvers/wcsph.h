@@ -5,6 +5,12 @@
 
 namespace rtsph {
 
+/// WCSPH's adaptive step (Monaghan 1992): min(cfl·h/(c0 + |v|max), 0.25·√(h/|a|max),
+/// viscous_limit), at most max_dt; spec.dt in fixed-step mode. v2max and a2max are the largest
+/// |v|² and |a|² over the fluid. Shared by the CPU and GPU backends.
+double wcsph_time_step(const SimSpec& s, const ResolvedParams& prm, double v2max, double a2max,
+                       double viscous_limit);
+
 template <int D>
 class Wcsph final : public FluidWorld<D> {
  public:

@@ -1,0 +1,99 @@
+// Shared by every GPU compute pass (prepended after layout.h): the parameter block, the particle
+// buffers, the smoothing kernels and the neighbour grid. DIM (2 or 3) and KERNEL are #defined
+// by the host. ASCII only.
+
+layout(std140, binding = RTSPH_U_PARAMS) uniform ParamsBlock { SphParams P; };
+
+// Storage blocks are declared by the passes that use them (Mesa counts declared blocks against
+// the 16 a compute shader may have): BUFFER_POS, BUFFER_VEL, ... each expand to one declaration.
+#define BUFFER_POS layout(std430, binding = RTSPH_B_POS) buffer PosBuf { vec4 pos[]; };
+#define BUFFER_VEL layout(std430, binding = RTSPH_B_VEL) buffer VelBuf { vec4 vel[]; };
+#define BUFFER_ACC layout(std430, binding = RTSPH_B_ACC) buffer AccBuf { vec4 acc[]; };
+#define BUFFER_DENS layout(std430, binding = RTSPH_B_DENS) buffer DensBuf { vec4 dens[]; };
+#define BUFFER_ID layout(std430, binding = RTSPH_B_ID) buffer IdBuf { uint pid[]; };
+#define BUFFER_FKEY layout(std430, binding = RTSPH_B_FKEY) buffer FKeyBuf { uint fkey[]; };
+#define BUFFER_FSTART layout(std430, binding = RTSPH_B_FSTART) buffer FStartBuf { uint fstart[]; };
+#define BUFFER_BPOS layout(std430, binding = RTSPH_B_BPOS) buffer BPosBuf { vec4 bpos[]; };
+#define BUFFER_BVEL layout(std430, binding = RTSPH_B_BVEL) buffer BVelBuf { vec4 bvel[]; };
+#define BUFFER_BNORMAL layout(std430, binding = RTSPH_B_BNORMAL) buffer BNormalBuf { vec4 bnormal[]; };
+#define BUFFER_BLOCAL layout(std430, binding = RTSPH_B_BLOCAL) buffer BLocalBuf { vec4 blocal[]; };
+#define BUFFER_BKEY layout(std430, binding = RTSPH_B_BKEY) buffer BKeyBuf { uint bkey[]; };
+#define BUFFER_BSTART layout(std430, binding = RTSPH_B_BSTART) buffer BStartBuf { uint bstart[]; };
+#define BUFFER_BPRESS layout(std430, binding = RTSPH_B_BPRESS) buffer BPressBuf { float bpress[]; };
+#define BUFFER_OBSTACLES layout(std430, binding = RTSPH_B_OBSTACLES) buffer ObstacleBuf { Obstacle obstacles[]; };
+
+// ---- Kernels: the CPU's formulas (core/kernels.h) with the constants its objects hold.
+#if KERNEL == 0
+// Cubic spline (Monaghan & Lattanzio 1985): kernel_a = (h, 1/h, sigma, gsigma), kernel_b.x = tiny.
+float kernel_w(float r2) {
+  float q = r2 * inversesqrt(r2 + P.kernel_b.x) * P.kernel_a.y;
+  float a = max(2.0 - q, 0.0), b = max(1.0 - q, 0.0);
+  return P.kernel_a.z * (0.25 * a * a * a - b * b * b);
+}
+float kernel_g(float r2) {  // grad W = kernel_g(r2) * (xi - xj)
+  float inv_r = inversesqrt(r2 + P.kernel_b.x);
+  float q = r2 * inv_r * P.kernel_a.y;
+  float a = max(2.0 - q, 0.0), b = max(1.0 - q, 0.0);
+  return (P.kernel_a.w * P.kernel_a.x) * (-0.75 * a * a + 3.0 * b * b) * inv_r;
+}
+#elif KERNEL == 1
+// Wendland C2: kernel_a = (h, 1/h, sigma, gsigma), kernel_b.x = tiny.
+float kernel_w(float r2) {
+  float q = r2 * inversesqrt(r2 + P.kernel_b.x) * P.kernel_a.y;
+  float a = max(1.0 - 0.5 * q, 0.0);
+  return P.kernel_a.z * (a * a * a * a * (2.0 * q + 1.0));
+}
+float kernel_g(float r2) {
+  float q = r2 * inversesqrt(r2 + P.kernel_b.x) * P.kernel_a.y;
+  float a = max(1.0 - 0.5 * q, 0.0);
+  return P.kernel_a.w * (-5.0 * a * a * a);
+}
+#elif KERNEL == 2
+// Poly6 value, spiky gradient (Mueller et al. 2003): kernel_a = (R, R^2, 1/R, poly6), kernel_b.x = spiky.
+float kernel_w(float r2) {
+  float d = max(P.kernel_a.y - r2, 0.0);
+  return P.kernel_a.w * d * d * d;
+}
+float kernel_g(float r2) {
+  float r = sqrt(r2);
+  float d = max(P.kernel_a.x - r, 0.0);
+  return (-3.0 * P.kernel_b.x) * d * d / (r + 1e-12 * P.kernel_a.x);
+}
+#else
+// Truncated Gaussian (Gingold & Monaghan 1977): kernel_a = (h, 1/h^2, sigma, cutoff^2).
+float kernel_w(float r2) {
+  return r2 < P.kernel_a.w ? P.kernel_a.z * exp(-r2 * P.kernel_a.y) : 0.0;
+}
+float kernel_g(float r2) { return (-2.0 * P.kernel_a.y) * kernel_w(r2); }
+#endif
+
+// ---- Neighbour grid: the CPU's UniformGrid (core/grid.cpp), keys with x fastest, cell indices
+// in double so that both backends put a particle in the same cell.
+uint cell_key(vec3 p) {
+  uint key = 0u, stride = 1u;
+  for (int a = 0; a < DIM; ++a) {
+    double f = (double(p[a]) - P.grid_origin[a]) * P.grid_inv_cell[a];
+    int dims = P.grid_dims[a];
+    int c = f >= 1.0lf ? (f < double(dims - 1) ? int(f) : dims - 2) : 1;  // NaN -> cell 1
+    key += uint(c) * stride;
+    stride *= uint(dims);
+  }
+  return key;
+}
+
+// The stencil as rows of three cells along x: row r of 3 (2D) or 9 (3D) covers the cells
+// [first, last) around `key`; their particles are contiguous in a start array.
+#if DIM == 3
+const int kRows = 9;
+#else
+const int kRows = 3;
+#endif
+uvec2 stencil_row(uint key, int r) {
+#if DIM == 3
+  int dy = r % 3 - 1, dz = r / 3 - 1;
+#else
+  int dy = r - 1, dz = 0;
+#endif
+  int k = int(key) + dz * P.grid_dims.x * P.grid_dims.y + dy * P.grid_dims.x;
+  return uvec2(uint(k - 1), uint(k + 2));
+}

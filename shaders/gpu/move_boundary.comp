@@ -1,0 +1,18 @@
+// Rigid motion of obstacle samples: x = c + R x_local, v = v_c + omega x (x - c).
+BUFFER_BPOS BUFFER_BVEL BUFFER_BNORMAL BUFFER_BLOCAL BUFFER_OBSTACLES
+void main() {
+  uint b = gl_GlobalInvocationID.x;
+  if (b >= P.boundary_count) return;
+  int owner = int(bnormal[b].w);
+  if (owner < 0) return;
+  Obstacle o = obstacles[owner];
+  vec3 l = blocal[b].xyz;
+  vec3 x = o.center.xyz + vec3(dot(o.r0.xyz, l), dot(o.r1.xyz, l), dot(o.r2.xyz, l));
+  vec3 v = o.velocity.xyz + cross(o.omega.xyz, x - o.center.xyz);
+#if DIM == 2
+  x.z = 0.0;
+  v.z = 0.0;
+#endif
+  bpos[b] = vec4(x, bpos[b].w);
+  bvel[b] = vec4(v, bvel[b].w);
+}

@@ -1,0 +1,521 @@
+#include "gpu/gpu_world.h"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "gpu/layout.h"
+
+namespace rtsph::gpu {
+
+namespace {
+using glsl::SphParams;
+using glsl::vec4;
+
+// Slots of the stats buffer (reduce.comp writes them).
+enum StatSlot : GLuint { kExtremes = 0, kDensity = 1, kEnergy = 2, kSlots = 3 };
+struct alignas(32) DVec4 { double x, y, z, w; };
+
+GLuint blocks_of(std::size_t n) { return GLuint((n + RTSPH_WG - 1) / RTSPH_WG); }
+
+// The kernel's constants exactly as the CPU's kernel object holds them (core/kernels.h), so
+// both backends evaluate the same float expressions.
+template <int D>
+void kernel_constants(KernelType type, double h, SphParams& p) {
+  switch (type) {
+    case KernelType::CubicSpline: {
+      const CubicSpline<D> k(h);
+      p.kernel_a = {k.h, k.inv_h, k.sigma, k.gsigma};
+      p.kernel_b = {k.tiny, 0, 0, 0};
+      break;
+    }
+    case KernelType::WendlandC2: {
+      const WendlandC2<D> k(h);
+      p.kernel_a = {k.h, k.inv_h, k.sigma, k.gsigma};
+      p.kernel_b = {k.tiny, 0, 0, 0};
+      break;
+    }
+    case KernelType::Poly6Spiky: {
+      const Poly6Spiky<D> k(h);
+      p.kernel_a = {k.R, k.R2, k.inv_R, k.poly6};
+      p.kernel_b = {k.spiky, 0, 0, 0};
+      break;
+    }
+    case KernelType::Gaussian: {
+      const Gaussian<D> k(h);
+      p.kernel_a = {k.h, k.inv_h2, k.sigma, k.cutoff2};
+      p.kernel_b = {0, 0, 0, 0};
+      break;
+    }
+  }
+}
+}  // namespace
+
+template <int D>
+GpuWorld<D>::GpuWorld(const SimSpec& spec, int threads) : FluidWorld<D>(spec, threads) {
+  if (const std::string why = compute_support_problem(); !why.empty()) throw std::runtime_error(why);
+  if (spec.periodic != PeriodicAxes::None)
+    throw std::invalid_argument(fmt::format(
+        "scene '{}': domain.periodic: the GPU backend has no periodic axes yet; use --backend cpu", spec.name));
+  defines_ = {fmt::format("DIM {}", D), fmt::format("KERNEL {}", int(spec.kernel))};
+  compile_programs();
+  glCreateBuffers(1, &params_ubo_);
+  glNamedBufferData(params_ubo_, sizeof(SphParams), nullptr, GL_DYNAMIC_DRAW);
+  stats_.reserve(kSlots * sizeof(DVec4));
+  stats_.fill_zero();
+  put_back_counter_.reserve(16);
+  put_back_counter_.fill_zero();
+  const std::size_t n = this->fluid_.size();
+  capacity_ = n + std::size_t(count_particles(spec).emitted_max);
+  for (Buffer* b : {&pos_, &vel_, &acc_, &dens_, &pos_alt_, &vel_alt_}) b->reserve(capacity_ * sizeof(vec4));
+  for (Buffer* b : {&id_, &id_alt_}) b->reserve(capacity_ * 4);
+  write_params(0);
+  upload_fluid(0, n);
+  upload_boundary();
+  upload_obstacles();
+  sort_boundary();
+}
+
+template <int D>
+GpuWorld<D>::~GpuWorld() {
+  if (params_ubo_) glDeleteBuffers(1, &params_ubo_);
+}
+
+template <int D>
+void GpuWorld<D>::compile_programs() {
+  sorter_ = std::make_unique<CellSorter>(defines_);
+  density_ = ComputeProgram("density.comp", defines_);
+  boundary_pressure_ = ComputeProgram("boundary_pressure.comp", defines_);
+  forces_ = ComputeProgram("forces.comp", defines_);
+  kick_ = ComputeProgram("kick.comp", defines_);
+  kick_drift_ = ComputeProgram("kick_drift.comp", defines_);
+  move_boundary_ = ComputeProgram("move_boundary.comp", defines_);
+  for (int m = 0; m < 3; ++m) {
+    auto d = defines_;
+    d.push_back(fmt::format("MODE {}", m));
+    d.push_back("FINAL 0");
+    reduce_[m] = ComputeProgram("reduce.comp", d);
+    d.back() = "FINAL 1";
+    reduce_final_[m] = ComputeProgram("reduce.comp", d);
+  }
+}
+
+template <int D>
+void GpuWorld<D>::write_params(double dt) {
+  const auto& prm = this->prm_;
+  const auto& s = this->spec_;
+  const auto& grid = this->ctx_.fluid_grid;
+  SphParams p{};
+  double origin[3] = {0, 0, 0}, inv_cell[3] = {0, 0, 0};
+  int dims[3] = {1, 1, 1};
+  for (int k = 0; k < D; ++k) {
+    origin[k] = double(grid.origin()[k]);
+    inv_cell[k] = grid.inv_cell(k);
+    dims[k] = grid.dim(k);
+  }
+  p.grid_origin = {origin[0], origin[1], origin[2], 0};
+  p.grid_inv_cell = {inv_cell[0], inv_cell[1], inv_cell[2], 0};
+  p.grid_dims = {dims[0], dims[1], dims[2], int(grid.cell_count())};
+  const Vec3d g = this->external_acceleration();
+  p.gravity = {float(g[0]), float(g[1]), D == 3 ? float(g[2]) : 0.0f, 0};
+  float lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0};
+  for (int k = 0; k < D; ++k) { lo[k] = Real(prm.domain_min[k]); hi[k] = Real(prm.domain_max[k]); }
+  p.wall_lo = {lo[0], lo[1], lo[2], 0};
+  p.wall_hi = {hi[0], hi[1], hi[2], 0};
+  const Brush& brush = this->brush_;
+  p.brush = {float(brush.center[0]), float(brush.center[1]), float(brush.center[2]), float(brush.radius)};
+  p.brush_strength = float(brush.strength);
+  kernel_constants<D>(s.kernel, prm.h, p);
+  p.mass = Real(prm.mass);
+  p.support2 = Real(prm.support * prm.support);
+  p.eps = Real(0.01 * prm.h * prm.h);
+  p.ach = Real(s.artificial_viscosity * prm.c0 * prm.h);
+  p.nu = Real(s.viscosity);
+  p.dmin = Real(0.25 * s.spacing);  // the CPU's kMinWallDistance (fluid_sums.cpp)
+  p.inv_rho0 = Real(1.0 / prm.rho0);
+  p.rho0 = Real(prm.rho0);
+  p.tait_b = Real(prm.tait_b);
+  p.tait_gamma = Real(s.tait_gamma);
+  p.stiffness = Real(prm.stiffness);
+  p.dt = Real(dt);
+  p.half_dt = Real(0.5 * dt);
+  p.put_back_margin = Real(0.25 * s.spacing);
+  p.fluid_count = glsl::uint(this->fluid_.size());
+  p.boundary_count = glsl::uint(this->boundary_.size());
+  p.obstacle_count = glsl::uint(this->obstacles_.size());
+  p.flags = (s.eos == Eos::Linear ? RTSPH_F_LINEAR_EOS : 0u) |
+            (s.clamp_negative_pressure ? RTSPH_F_CLAMP_NEGATIVE : 0u) | (brush.active ? RTSPH_F_BRUSH : 0u);
+  glNamedBufferSubData(params_ubo_, 0, sizeof p, &p);
+}
+
+// Every SPH binding, again before each pass: the sort swaps buffers, and a renderer sharing the
+// context may bind its own.
+template <int D>
+void GpuWorld<D>::bind_all() const {
+  glBindBufferBase(GL_UNIFORM_BUFFER, RTSPH_U_PARAMS, params_ubo_);
+  pos_.bind(RTSPH_B_POS);
+  vel_.bind(RTSPH_B_VEL);
+  acc_.bind(RTSPH_B_ACC);
+  dens_.bind(RTSPH_B_DENS);
+  id_.bind(RTSPH_B_ID);
+  fluid_cells_.keys.bind(RTSPH_B_FKEY);
+  fluid_cells_.start.bind(RTSPH_B_FSTART);
+  bpos_.bind(RTSPH_B_BPOS);
+  bvel_.bind(RTSPH_B_BVEL);
+  bnormal_.bind(RTSPH_B_BNORMAL);
+  blocal_.bind(RTSPH_B_BLOCAL);
+  boundary_cells_.keys.bind(RTSPH_B_BKEY);
+  boundary_cells_.start.bind(RTSPH_B_BSTART);
+  bpress_.bind(RTSPH_B_BPRESS);
+  obstacles_buf_.bind(RTSPH_B_OBSTACLES);
+  stats_.bind(RTSPH_B_STATS);
+}
+
+template <int D>
+void GpuWorld<D>::upload_fluid(std::size_t first, std::size_t count) {
+  if (count == 0) return;
+  if (first + count > capacity_) {
+    // More particles than the emitters promised (a loaded checkpoint): grow, keeping the rest.
+    sync_host();
+    capacity_ = (first + count) * 2;
+    for (Buffer* b : {&pos_, &vel_, &acc_, &dens_, &pos_alt_, &vel_alt_}) b->reserve(capacity_ * sizeof(vec4));
+    for (Buffer* b : {&id_, &id_alt_}) b->reserve(capacity_ * 4);
+    count += first;
+    first = 0;
+  }
+  const auto& f = this->fluid_;
+  std::vector<vec4> x(count), v(count), a(count), d(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    float xs[3] = {0, 0, 0}, vs[3] = {0, 0, 0}, as[3] = {0, 0, 0};
+    for (int k = 0; k < D; ++k) {
+      xs[k] = f.x[k][first + i];
+      vs[k] = f.v[k][first + i];
+      as[k] = f.a[k][first + i];
+    }
+    x[i] = {xs[0], xs[1], xs[2], 0};
+    v[i] = {vs[0], vs[1], vs[2], 0};
+    a[i] = {as[0], as[1], as[2], 0};
+    const float rho = f.rho[first + i];
+    d[i] = {rho, f.p[first + i], 0, rho > 0 ? 1.0f / rho : 0.0f};
+  }
+  pos_.upload(x.data(), count * sizeof(vec4), first * sizeof(vec4));
+  vel_.upload(v.data(), count * sizeof(vec4), first * sizeof(vec4));
+  acc_.upload(a.data(), count * sizeof(vec4), first * sizeof(vec4));
+  dens_.upload(d.data(), count * sizeof(vec4), first * sizeof(vec4));
+  id_.upload(f.id.data() + first, count * 4, first * 4);
+}
+
+template <int D>
+void GpuWorld<D>::upload_boundary() {
+  const auto& b = this->boundary_;
+  const auto& ctx = this->ctx_;
+  const std::size_t n = b.size();
+  std::vector<vec4> x(n), v(n), nrm(n), loc(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    float xs[3] = {0, 0, 0}, vs[3] = {0, 0, 0}, ns[3] = {0, 0, 0}, ls[3] = {0, 0, 0};
+    for (int k = 0; k < D; ++k) {
+      xs[k] = b.x[k][i];
+      vs[k] = b.v[k][i];
+      ns[k] = ctx.wall_normal[k][i];
+      ls[k] = b.local[k][i];
+    }
+    x[i] = {xs[0], xs[1], xs[2], b.psi[i]};
+    v[i] = {vs[0], vs[1], vs[2], ctx.wall_depth[i]};
+    nrm[i] = {ns[0], ns[1], ns[2], float(b.owner[i])};
+    loc[i] = {ls[0], ls[1], ls[2], 0};
+  }
+  for (Buffer* buf : {&bpos_, &bvel_, &bnormal_, &blocal_, &bpos_alt_, &bvel_alt_, &bnormal_alt_, &blocal_alt_})
+    buf->reserve(n * sizeof(vec4));
+  bpress_.reserve(n * 4);
+  bpos_.upload(x.data(), n * sizeof(vec4));
+  bvel_.upload(v.data(), n * sizeof(vec4));
+  bnormal_.upload(nrm.data(), n * sizeof(vec4));
+  blocal_.upload(loc.data(), n * sizeof(vec4));
+}
+
+template <int D>
+void GpuWorld<D>::upload_obstacles() {
+  std::vector<glsl::Obstacle> obs;
+  for (const auto& st : this->obstacles_) {
+    glsl::Obstacle o{};
+    const Vec3d c = st.pose.center;
+    Vec3d col[3];
+    for (int k = 0; k < 3; ++k) {
+      Vec3d e{};
+      e[k] = 1;
+      col[k] = st.pose.apply(e) - c;  // R e_k
+    }
+    o.r0 = {float(col[0][0]), float(col[1][0]), float(col[2][0]), 0};
+    o.r1 = {float(col[0][1]), float(col[1][1]), float(col[2][1]), 0};
+    o.r2 = {float(col[0][2]), float(col[1][2]), float(col[2][2]), 0};
+    o.center = {float(c[0]), float(c[1]), float(c[2]), 0};
+    o.velocity = {float(st.velocity[0]), float(st.velocity[1]), float(st.velocity[2]), 0};
+    o.omega = {float(st.angular_velocity[0]), float(st.angular_velocity[1]), float(st.angular_velocity[2]), 0};
+    obs.push_back(o);
+  }
+  obstacles_buf_.reserve(std::max<std::size_t>(1, obs.size()) * sizeof(glsl::Obstacle));
+  obstacles_buf_.upload(obs.data(), obs.size() * sizeof(glsl::Obstacle));
+}
+
+template <int D>
+void GpuWorld<D>::sort_boundary() {
+  bind_all();  // keys.comp reads the grid from the parameter block
+  const std::size_t n = this->boundary_.size();
+  sorter_->sort(bpos_, n, this->ctx_.fluid_grid.cell_count(), boundary_cells_);
+  sorter_->gather(boundary_cells_.order, n, {&bpos_, &bvel_, &bnormal_, &blocal_},
+                  {&bpos_alt_, &bvel_alt_, &bnormal_alt_, &blocal_alt_});
+  bpos_.swap(bpos_alt_);
+  bvel_.swap(bvel_alt_);
+  bnormal_.swap(bnormal_alt_);
+  blocal_.swap(blocal_alt_);
+}
+
+template <int D>
+void GpuWorld<D>::sort_particles() {
+  bind_all();  // keys.comp reads the grid from the parameter block
+  const std::size_t n = this->fluid_.size();
+  sorter_->sort(pos_, n, this->ctx_.fluid_grid.cell_count(), fluid_cells_);
+  sorter_->gather(fluid_cells_.order, n, {&pos_, &vel_}, {&pos_alt_, &vel_alt_}, &id_, &id_alt_);
+  pos_.swap(pos_alt_);
+  vel_.swap(vel_alt_);
+  id_.swap(id_alt_);
+  if (this->boundary_moving_) sort_boundary();
+}
+
+template <int D>
+void GpuWorld<D>::density_and_pressure() {
+  bind_all();
+  density_.dispatch(this->fluid_.size());
+}
+
+template <int D>
+void GpuWorld<D>::boundary_pressure() {
+  bind_all();
+  boundary_pressure_.dispatch(this->boundary_.size());
+}
+
+template <int D>
+void GpuWorld<D>::forces() {
+  bind_all();
+  forces_.dispatch(this->fluid_.size());
+}
+
+template <int D>
+void GpuWorld<D>::kick(double dt) {
+  bind_all();
+  kick_.set("dt", Real(dt));
+  kick_.dispatch(this->fluid_.size());
+}
+
+template <int D>
+void GpuWorld<D>::kick_drift(double) {
+  bind_all();
+  put_back_counter_.bind(RTSPH_B_REDUCE);
+  kick_drift_.dispatch(this->fluid_.size());
+}
+
+template <int D>
+void GpuWorld<D>::advance_scene_gpu(double t_new, double dt) {
+  if (this->update_obstacle_states(t_new, dt)) {
+    upload_obstacles();
+    write_params(dt);
+    bind_all();
+    move_boundary_.dispatch(this->boundary_.size());
+    this->stop_user_driven_obstacles();
+  }
+  const std::size_t before = this->fluid_.size();
+  this->emit_particles(t_new);
+  if (this->fluid_.size() > before) upload_fluid(before, this->fluid_.size() - before);
+  write_params(dt);  // the counts may have changed
+}
+
+
+// Reductions run in two passes in a fixed order (reduce.comp): per-workgroup partials, then
+// one workgroup over them.
+template <int D>
+typename GpuWorld<D>::Extremes GpuWorld<D>::gpu_max_speed_and_acceleration() {
+  const std::size_t n = this->fluid_.size();
+  const GLuint blocks = blocks_of(n);
+  partials_.reserve((1 + std::size_t(blocks)) * sizeof(DVec4));
+  bind_all();
+  partials_.bind(RTSPH_B_REDUCE);
+  reduce_[0].set("n", GLuint(n));
+  reduce_[0].dispatch_groups(blocks);
+  reduce_final_[0].set("n", blocks);
+  reduce_final_[0].set("slot", GLuint(kExtremes));
+  reduce_final_[0].dispatch_groups(1);
+  DVec4 r{};
+  stats_.download(&r, sizeof r, kExtremes * sizeof(DVec4));
+  return {r.x, r.y};
+}
+
+template <int D>
+void GpuWorld<D>::measure_density_error_gpu() {
+  const std::size_t n = this->fluid_.size();
+  const GLuint blocks = blocks_of(n);
+  partials_.reserve((1 + std::size_t(blocks)) * sizeof(DVec4));
+  bind_all();
+  partials_.bind(RTSPH_B_REDUCE);
+  reduce_[1].set("n", GLuint(n));
+  reduce_[1].dispatch_groups(blocks);
+  reduce_final_[1].set("n", blocks);
+  reduce_final_[1].set("slot", GLuint(kDensity));
+  reduce_final_[1].dispatch_groups(1);
+}
+
+template <int D>
+void GpuWorld<D>::measure_energies(SimStats& s) const {
+  auto* self = const_cast<GpuWorld*>(this);
+  const std::size_t n = this->fluid_.size();
+  const GLuint blocks = blocks_of(n);
+  self->partials_.reserve((1 + std::size_t(blocks)) * sizeof(DVec4));
+  bind_all();
+  self->partials_.bind(RTSPH_B_REDUCE);
+  // The potential energy is gravity's alone, as on the CPU (not the scene's body force).
+  const Vec3d g = this->spec_.gravity;
+  const GLuint prog = reduce_[2].id();
+  glProgramUniform3f(prog, glGetUniformLocation(prog, "g_energy"), float(g[0]), float(g[1]),
+                     D == 3 ? float(g[2]) : 0.0f);
+  reduce_[2].set("n", GLuint(n));
+  reduce_[2].dispatch_groups(blocks);
+  reduce_final_[2].set("n", blocks);
+  reduce_final_[2].set("slot", GLuint(kEnergy));
+  reduce_final_[2].dispatch_groups(1);
+  DVec4 r{};
+  stats_.download(&r, sizeof r, kEnergy * sizeof(DVec4));
+  s.kinetic_energy_j = r.x;
+  s.potential_energy_j = r.y;
+  s.max_speed = std::sqrt(r.z);
+}
+
+template <int D>
+void GpuWorld<D>::sync_scalars() const {
+  if (scalars_fresh_ || loading_) return;
+  auto* self = const_cast<GpuWorld*>(this);
+  DVec4 r{};
+  stats_.download(&r, sizeof r, kDensity * sizeof(DVec4));
+  const std::size_t n = this->fluid_.size();
+  self->density_error_ = r.x;
+  self->mean_density_error_ = n ? r.y / double(n) : 0.0;
+  self->max_density_error_ = r.w;
+  std::uint32_t count = 0;
+  put_back_counter_.download(&count, 4);
+  self->put_back_ = put_back_base_ + count;
+  scalars_fresh_ = true;
+}
+
+template <int D>
+void GpuWorld<D>::sync_host() const {
+  if (host_fresh_ || loading_) return;
+  auto* self = const_cast<GpuWorld*>(this);
+  auto& f = self->fluid_;
+  const std::size_t n = f.size();
+  std::vector<vec4> x(n), v(n), a(n), d(n);
+  pos_.download(x.data(), n * sizeof(vec4));
+  vel_.download(v.data(), n * sizeof(vec4));
+  acc_.download(a.data(), n * sizeof(vec4));
+  dens_.download(d.data(), n * sizeof(vec4));
+  id_.download(f.id.data(), n * 4);
+  for (std::size_t i = 0; i < n; ++i) {
+    const float xs[3] = {x[i].x, x[i].y, x[i].z}, vs[3] = {v[i].x, v[i].y, v[i].z},
+                as[3] = {a[i].x, a[i].y, a[i].z};
+    for (int k = 0; k < D; ++k) {
+      f.x[k][i] = xs[k];
+      f.v[k][i] = vs[k];
+      f.a[k][i] = as[k];
+    }
+    f.rho[i] = d[i].x;
+    f.p[i] = d[i].y;
+  }
+  auto& b = self->boundary_;
+  auto& ctx = self->ctx_;
+  const std::size_t nb = b.size();
+  std::vector<vec4> bx(nb), bv(nb), bn(nb), bl(nb);
+  bpos_.download(bx.data(), nb * sizeof(vec4));
+  bvel_.download(bv.data(), nb * sizeof(vec4));
+  bnormal_.download(bn.data(), nb * sizeof(vec4));
+  blocal_.download(bl.data(), nb * sizeof(vec4));
+  for (std::size_t i = 0; i < nb; ++i) {
+    const float xs[3] = {bx[i].x, bx[i].y, bx[i].z}, vs[3] = {bv[i].x, bv[i].y, bv[i].z},
+                ns[3] = {bn[i].x, bn[i].y, bn[i].z}, ls[3] = {bl[i].x, bl[i].y, bl[i].z};
+    for (int k = 0; k < D; ++k) {
+      b.x[k][i] = xs[k];
+      b.v[k][i] = vs[k];
+      b.local[k][i] = ls[k];
+      ctx.wall_normal[k][i] = ns[k];
+    }
+    b.psi[i] = bx[i].w;
+    ctx.wall_depth[i] = bv[i].w;
+    b.owner[i] = std::int32_t(bn[i].w);
+  }
+  host_fresh_ = true;
+}
+
+template <int D>
+ParticleView GpuWorld<D>::fluid() const {
+  sync_host();
+  return FluidWorld<D>::fluid();
+}
+
+template <int D>
+BoundaryView GpuWorld<D>::boundary() const {
+  sync_host();
+  return FluidWorld<D>::boundary();
+}
+
+template <int D>
+SimStats GpuWorld<D>::stats() const {
+  sync_scalars();
+  return FluidWorld<D>::stats();
+}
+
+template <int D>
+void GpuWorld<D>::prepare_state(std::size_t fluid_count) {
+  loading_ = true;
+  FluidWorld<D>::prepare_state(fluid_count);
+}
+
+template <int D>
+std::vector<StateField> GpuWorld<D>::state_fields() {
+  sync_host();
+  sync_scalars();
+  return FluidWorld<D>::state_fields();
+}
+
+template <int D>
+void GpuWorld<D>::state_loaded() {
+  FluidWorld<D>::state_loaded();  // re-sorts the boundary and rebuilds the wall geometry
+  loading_ = false;
+  const std::size_t n = this->fluid_.size();
+  if (n > capacity_) {
+    capacity_ = n + std::size_t(count_particles(this->spec_).emitted_max);
+    for (Buffer* b : {&pos_, &vel_, &acc_, &dens_, &pos_alt_, &vel_alt_}) b->reserve(capacity_ * sizeof(vec4));
+    for (Buffer* b : {&id_, &id_alt_}) b->reserve(capacity_ * 4);
+  }
+  write_params(this->dt_);
+  upload_fluid(0, n);
+  upload_boundary();
+  upload_obstacles();
+  sort_boundary();  // already in cell order: the stable sort keeps it, and builds the cell starts
+  const DVec4 density{this->density_error_, this->mean_density_error_ * double(n), 0, this->max_density_error_};
+  stats_.upload(&density, sizeof density, kDensity * sizeof(DVec4));
+  put_back_base_ = this->put_back_;
+  put_back_counter_.fill_zero();
+  host_fresh_ = scalars_fresh_ = true;
+}
+
+template <int D>
+void GpuWorld<D>::overwrite_fluid(const float* const* x, const float* const* v) {
+  sync_host();
+  sync_scalars();
+  FluidWorld<D>::overwrite_fluid(x, v);  // with new positions this ends in state_loaded()
+  if (!x) upload_fluid(0, this->fluid_.size());
+  host_fresh_ = true;
+}
+
+template class GpuWorld<2>;
+template class GpuWorld<3>;
+
+}  // namespace rtsph::gpu

@@ -1,0 +1,85 @@
+#pragma once
+// The GPU backend's shared fluid world (OpenGL 4.3 compute): the CPU FluidWorld samples the
+// scene, owns the scalars (time, obstacles, emitters, counters) and serves checkpoints, while
+// the particles live and are stepped in GPU buffers. A GPU method (gpu_wcsph.h) derives from
+// this and writes its step() from the stages here, as CPU methods do from FluidWorld's.
+//
+// The host copies of the particle arrays are refreshed only when something reads them
+// (fluid(), boundary(), state_fields()); a step reads back a few bytes at most: the maximum
+// speed and acceleration for an adaptive time step. Every call needs the OpenGL context that
+// was current when the simulation was made to be current on the calling thread.
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "gpu/gl_compute.h"
+#include "gpu/sort.h"
+#include "solvers/fluid_world.h"
+
+namespace rtsph::gpu {
+
+template <int D>
+class GpuWorld : public FluidWorld<D> {
+ public:
+  ~GpuWorld() override;
+  ParticleView fluid() const override;
+  BoundaryView boundary() const override;
+  SimStats stats() const override;
+  void prepare_state(std::size_t fluid_count) override;
+  std::vector<StateField> state_fields() override;
+  void state_loaded() override;
+  void overwrite_fluid(const float* const* x, const float* const* v) override;
+  /// The renderer's zero-copy path: fluid positions (vec4, cell order) and their count.
+  GLuint position_buffer() const { return pos_.id(); }
+  GLuint velocity_buffer() const { return vel_.id(); }
+  GLuint density_buffer() const { return dens_.id(); }
+
+ protected:
+  GpuWorld(const SimSpec& spec, int threads);
+
+  // Stages, in the order a step calls them.
+  struct Extremes { double v2 = 0, a2 = 0; };
+  Extremes gpu_max_speed_and_acceleration();  // reads back 32 bytes
+  void write_params(double dt);               // the step's constants (SphParams) to the GPU
+  void kick_drift(double dt);                 // v += a dt/2; x += v dt; walls; put-back
+  void advance_scene_gpu(double t_new, double dt);  // obstacles and emitters
+  void sort_particles();                      // fluid (and moving boundary) into cells
+  void density_and_pressure();                // ρ, p, p/ρ², 1/ρ (density.comp)
+  void measure_density_error_gpu();           // max and mean compression, on the GPU
+  void boundary_pressure();                   // Adami 2012's wall pressure
+  void forces();                              // the acceleration sum (forces.comp)
+  void kick(double dt);                       // v += a dt
+  /// After a step: the host copies are stale until the next read.
+  void mark_stale() { host_fresh_ = false; scalars_fresh_ = false; }
+
+ private:
+  void compile_programs();
+  void bind_all() const;
+  void upload_fluid(std::size_t first, std::size_t count);
+  void upload_boundary();
+  void upload_obstacles();
+  void sort_boundary();
+  /// Reads the particle arrays back into the FluidWorld host copies (logically const: the
+  /// simulation's state does not change, only where a copy of it lives).
+  void sync_host() const;
+  void sync_scalars() const;
+  void measure_energies(SimStats& s) const override;
+
+  std::vector<std::string> defines_;
+  std::unique_ptr<CellSorter> sorter_;
+  ComputeProgram density_, boundary_pressure_, forces_, kick_, kick_drift_, move_boundary_;
+  ComputeProgram reduce_[3], reduce_final_[3];
+  GLuint params_ubo_ = 0;
+  // Particle buffers (layout.h's bindings); *_alt are the sort's gather targets.
+  Buffer pos_, vel_, acc_, dens_, id_, pos_alt_, vel_alt_, id_alt_;
+  Buffer bpos_, bvel_, bnormal_, blocal_, bpress_, bpos_alt_, bvel_alt_, bnormal_alt_, blocal_alt_;
+  Buffer obstacles_buf_, partials_, stats_, put_back_counter_;
+  SortedCells fluid_cells_, boundary_cells_;
+  std::size_t capacity_ = 0;        // fluid particles the buffers hold (emitters included)
+  std::uint64_t put_back_base_ = 0; // put-backs before the GPU counter was last zeroed
+  bool boundary_sorted_ = false;
+  bool loading_ = false;            // prepare_state() .. state_loaded(): host copies are the truth
+  mutable bool host_fresh_ = true, scalars_fresh_ = true;
+};
+
+}  // namespace rtsph::gpu

@@ -1,0 +1,99 @@
+// The GPU backend's shared layout: buffer binding points and the parameter block, written once
+// for both C++ (src/gpu/*.cpp includes this file) and GLSL (gl_compute.cpp prepends this file's
+// text to every compute shader in shaders/gpu/). Keep it to what both languages parse: #define,
+// #if, structs of 4-component vectors and scalars in groups of four (std140 and C++ then agree;
+// the static_asserts below check the sizes). ASCII only: GLSL reads the comments too.
+#ifndef RTSPH_GPU_LAYOUT_H
+#define RTSPH_GPU_LAYOUT_H
+
+#ifdef __cplusplus
+#include <cstdint>
+namespace rtsph::gpu::glsl {
+using uint = std::uint32_t;
+struct alignas(16) vec4 { float x, y, z, w; };
+struct alignas(16) ivec4 { std::int32_t x, y, z, w; };
+struct alignas(32) dvec4 { double x, y, z, w; };
+#endif
+
+// Threads per workgroup of every per-particle pass. The radix sort's blocks are one element per
+// thread, so RTSPH_WG also sets its block size.
+#define RTSPH_WG 256
+#define RTSPH_RADIX_BITS 8
+#define RTSPH_RADIX 256
+
+// Shader storage bindings. Fluid arrays are in cell order after each sort.
+#define RTSPH_B_POS 0        // vec4: x (m), w unused
+#define RTSPH_B_VEL 1        // vec4: v (m/s)
+#define RTSPH_B_ACC 2        // vec4: a (m/s^2)
+#define RTSPH_B_DENS 3       // vec4: rho (kg/m^3), p (Pa), p/rho^2 (the symmetric pressure term), 1/rho
+#define RTSPH_B_ID 4         // uint: stable particle id
+#define RTSPH_B_FKEY 5       // uint: cell key of each fluid particle (sorted)
+#define RTSPH_B_FSTART 6     // uint: first fluid particle of each cell; cells + 1 entries
+#define RTSPH_B_BPOS 7       // vec4: boundary x, w = Psi (kg, Akinci 2012)
+#define RTSPH_B_BVEL 8       // vec4: boundary v, w = wall depth (m; 0 for obstacle samples)
+#define RTSPH_B_BNORMAL 9    // vec4: wall normal into the fluid, w = owner (-1 wall, else obstacle)
+#define RTSPH_B_BLOCAL 10    // vec4: position in the owner's body frame
+#define RTSPH_B_BSTART 11    // uint: first boundary sample of each cell
+#define RTSPH_B_BPRESS 12    // float: p_b/rho0^2 extrapolated from the fluid (Adami 2012)
+#define RTSPH_B_OBSTACLES 13 // Obstacle per obstacle
+#define RTSPH_B_REDUCE 14    // dvec4 partials of a reduction; the put-back counter during drift
+// The sort and scan's own buffers; the sorted payload is gathered through these bindings too.
+#define RTSPH_B_KEYS_IN 15
+#define RTSPH_B_VALS_IN 16
+#define RTSPH_B_KEYS_OUT 17
+#define RTSPH_B_VALS_OUT 18
+#define RTSPH_B_COUNTS 19
+#define RTSPH_B_SCAN 20
+#define RTSPH_B_SCAN_SUMS 21
+#define RTSPH_B_GATHER_IN0 22
+#define RTSPH_B_GATHER_IN1 23
+#define RTSPH_B_GATHER_IN2 24
+#define RTSPH_B_GATHER_IN3 25
+#define RTSPH_B_GATHER_OUT0 26
+#define RTSPH_B_GATHER_OUT1 27
+#define RTSPH_B_GATHER_OUT2 28
+#define RTSPH_B_GATHER_OUT3 29
+#define RTSPH_B_BKEY 30      // uint: cell key of each boundary sample (sorted)
+#define RTSPH_B_STATS 31     // dvec4 results of the reductions (gpu_world.cpp, StatSlot)
+#define RTSPH_BINDINGS 32
+#define RTSPH_U_PARAMS 0     // uniform block binding of SphParams
+
+// Flags in SphParams.flags.
+#define RTSPH_F_LINEAR_EOS 1u
+#define RTSPH_F_CLAMP_NEGATIVE 2u
+#define RTSPH_F_BRUSH 4u
+#define RTSPH_F_WALL_HYDROSTATIC 8u
+
+// Everything a step's passes read that is constant over the step (std140 uniform block).
+struct SphParams {
+  dvec4 grid_origin;    // m, the neighbour grid's origin (double: the CPU computes keys in double
+  dvec4 grid_inv_cell;  //   and the GPU must put every particle in the same cell)
+  ivec4 grid_dims;      // cells per axis (z = 1 in 2D), w = total cells
+  vec4 gravity;         // m/s^2, gravity + body force
+  vec4 wall_lo;         // m, the container's wall planes (drift's contact)
+  vec4 wall_hi;
+  vec4 brush;           // xyz centre (m), w radius (m)
+  vec4 kernel_a;        // the kernel's constants, as its CPU object holds them (core/kernels.h)
+  vec4 kernel_b;
+  float mass, support2, eps, ach;  // kg, m^2, 0.01h^2 (m^2), alpha c0 h (m^2/s)
+  float nu, dmin, inv_rho0, rho0;  // m^2/s, m (no-slip floor), m^3/kg, kg/m^3
+  float tait_b, tait_gamma, stiffness, brush_strength;  // Pa, -, m^2/s^2, m/s^2
+  float dt, half_dt, put_back_margin, pad0;  // s, s, m
+  uint fluid_count, boundary_count, flags, obstacle_count;
+};
+
+// A rigid obstacle's pose and motion for the boundary transform (rows of R: body -> world).
+struct Obstacle {
+  vec4 r0, r1, r2;
+  vec4 center;          // m
+  vec4 velocity;        // m/s
+  vec4 omega;           // rad/s
+};
+
+#ifdef __cplusplus
+static_assert(sizeof(SphParams) == 256, "SphParams must match its std140 layout");
+static_assert(sizeof(Obstacle) == 96, "Obstacle must match its std430 layout");
+}  // namespace rtsph::gpu::glsl
+#endif
+
+#endif  // RTSPH_GPU_LAYOUT_H

@@ -1,0 +1,270 @@
+// The GPU backend (OpenGL compute) against the CPU backend and against physics, on Mesa llvmpipe
+// in CI: small scenes, a few hundred steps (llvmpipe is some 30x slower than the CPU solver).
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <filesystem>
+#include <random>
+#include <unordered_map>
+
+#include <fmt/format.h>
+
+#include "gl_test_context.h"
+#include "gpu/backend.h"
+#include "gpu/gl_compute.h"
+#include "io/checkpoint.h"
+#include "test_scenes.h"
+
+using namespace rtsph;
+
+namespace {
+
+class GpuWcsph : public ::testing::Test {
+ protected:
+  void SetUp() override { RTSPH_HEADLESS_CONTEXT_OR_SKIP(ctx_); }
+  void TearDown() override { ctx_.reset(); }
+  std::unique_ptr<render::HeadlessContext> ctx_;
+};
+
+// Values of one per-particle quantity by particle id.
+std::unordered_map<std::uint32_t, std::size_t> index_by_id(const ParticleView& v) {
+  std::unordered_map<std::uint32_t, std::size_t> m;
+  for (std::size_t i = 0; i < v.count; ++i) m[v.id[i]] = i;
+  return m;
+}
+
+double relative_rms_density(const Simulation& a, const Simulation& b) {
+  const ParticleView va = a.fluid(), vb = b.fluid();
+  EXPECT_EQ(va.count, vb.count);
+  const auto ib = index_by_id(vb);
+  double num = 0, den = 0;
+  for (std::size_t i = 0; i < va.count; ++i) {
+    const double ra = va.density[i], rb = vb.density[ib.at(va.id[i])];
+    num += (ra - rb) * (ra - rb);
+    den += ra * ra;
+  }
+  return std::sqrt(num / den);
+}
+
+// The surge front: the largest x of any fluid particle (2D and 3D dam breaks run along x).
+double front(const Simulation& s) {
+  const ParticleView v = s.fluid();
+  double m = 0;
+  for (std::size_t i = 0; i < v.count; ++i) m = std::max(m, double(v.x[0][i]));
+  return m;
+}
+
+SimSpec dam_break_3d(double a, double spacing) {
+  SimSpec s;
+  s.name = "dam_break_3d_test";
+  s.dimension = 3;
+  s.domain_min = {{0, 0, 0}};
+  s.domain_max = {{4 * a, 2.5 * a, a}};
+  s.spacing = spacing;
+  s.fluid_blocks.push_back({{{0, 0, 0}}, {{a, 2 * a, a}}, {}});
+  return s;
+}
+
+}  // namespace
+
+TEST_F(GpuWcsph, EveryComputeShaderCompilesForEveryDimensionAndKernel) {
+  EXPECT_EQ(gpu::compute_support_problem(), "");
+  for (const auto& name : gpu::compute_shader_names())
+    for (int dim : {2, 3})
+      for (int kernel = 0; kernel < 4; ++kernel) {
+        std::vector<std::string> d = {fmt::format("DIM {}", dim), fmt::format("KERNEL {}", kernel),
+                                      "MODE 1", "FINAL 0", "COUNT 2"};
+        EXPECT_NO_THROW(gpu::ComputeProgram(name, d)) << name << " DIM " << dim << " KERNEL " << kernel;
+      }
+}
+
+// The same stable sort by the same cell keys: the GPU puts the particles in the CPU's order, and
+// their densities agree to float round-off (the sums run in a different order).
+TEST_F(GpuWcsph, FirstStepMatchesTheCpuIn2DAnd3D) {
+  for (int dim : {2, 3}) {
+    const SimSpec spec = dim == 2 ? test::dam_break_2d(0.1, 0.005) : dam_break_3d(0.1, 0.01);
+    auto cpu = make_simulation(spec, 1);
+    auto gpu = gpu::make_gpu_simulation(spec, 1);
+    {
+      const ParticleView c = cpu->fluid(), g = gpu->fluid();
+      ASSERT_EQ(c.count, g.count);
+      EXPECT_TRUE(std::equal(c.id, c.id + c.count, g.id)) << dim << "D: the sorted order differs";
+      const double e0 = relative_rms_density(*cpu, *gpu);
+      std::printf("%dD, %zu particles: density relative RMS at t = 0: %.3g\n", dim, c.count, e0);
+      EXPECT_LT(e0, 1e-5);
+    }
+    cpu->step();
+    gpu->step();
+    EXPECT_EQ(cpu->stats().dt_s, gpu->stats().dt_s) << "the same state gives the same time step";
+    const double e1 = relative_rms_density(*cpu, *gpu);
+    std::printf("%dD: density relative RMS after the first step: %.3g\n", dim, e1);
+    EXPECT_LT(e1, 1e-5);
+  }
+}
+
+// 200 steps of a dam break: the surge front within 1% and the maximum density error within 0.5
+// percentage points of the CPU's.
+TEST_F(GpuWcsph, DamBreakFollowsTheCpuFor200Steps) {
+  for (int dim : {2, 3}) {
+    const SimSpec spec = dim == 2 ? test::dam_break_2d(0.1, 0.005) : dam_break_3d(0.1, 0.0125);
+    auto cpu = make_simulation(spec, 2);
+    auto gpu = gpu::make_gpu_simulation(spec, 2);
+    double max_err_cpu = 0, max_err_gpu = 0;
+    for (int s = 0; s < 200; ++s) {
+      cpu->step();
+      gpu->step();
+      max_err_cpu = std::max(max_err_cpu, cpu->stats().density_error);
+      max_err_gpu = std::max(max_err_gpu, gpu->stats().density_error);
+    }
+    const double fc = front(*cpu), fg = front(*gpu);
+    std::printf("%dD after 200 steps: t = %.4f / %.4f s, front %.5f / %.5f m, max density error %.4f / %.4f (CPU / GPU)\n",
+                dim, cpu->time(), gpu->time(), fc, fg, max_err_cpu, max_err_gpu);
+    EXPECT_NEAR(fg, fc, 0.01 * fc);
+    EXPECT_NEAR(max_err_gpu, max_err_cpu, 0.005);
+    EXPECT_NEAR(gpu->time(), cpu->time(), 0.01 * cpu->time());
+    EXPECT_EQ(gpu->stats().particles_put_back, cpu->stats().particles_put_back);
+  }
+}
+
+TEST_F(GpuWcsph, TwoRunsAreBitwiseIdentical) {
+  const SimSpec spec = test::dam_break_2d(0.1, 0.005);
+  auto a = gpu::make_gpu_simulation(spec, 1);
+  auto b = gpu::make_gpu_simulation(spec, 2);
+  for (int s = 0; s < 60; ++s) { a->step(); b->step(); }
+  const ParticleView va = a->fluid(), vb = b->fluid();
+  ASSERT_EQ(va.count, vb.count);
+  for (int k = 0; k < 2; ++k) {
+    EXPECT_EQ(0, std::memcmp(va.x[k], vb.x[k], va.count * 4));
+    EXPECT_EQ(0, std::memcmp(va.v[k], vb.v[k], va.count * 4));
+  }
+  EXPECT_EQ(0, std::memcmp(va.density, vb.density, va.count * 4));
+  EXPECT_EQ(a->time(), b->time());
+}
+
+// Pair forces are antisymmetric, so a free block (no gravity, away from the walls) keeps its
+// total momentum while its particles scatter.
+TEST_F(GpuWcsph, FreeBlockConservesMomentum) {
+  SimSpec spec;
+  spec.name = "free_block";
+  spec.dimension = 3;
+  spec.domain_min = {{0, 0, 0}};
+  spec.domain_max = {{1, 1, 1}};
+  spec.spacing = 0.02;
+  spec.gravity = {};
+  spec.speed_of_sound = 20;
+  spec.fluid_blocks.push_back({{{0.4, 0.4, 0.4}}, {{0.6, 0.6, 0.6}}, {}});
+  auto gpu = gpu::make_gpu_simulation(spec, 1);
+  const ParticleView v0 = gpu->fluid();
+  std::mt19937 rng(7);
+  std::normal_distribution<float> noise(0, 0.3f);
+  std::vector<float> vel[3];
+  for (int k = 0; k < 3; ++k) {
+    vel[k].resize(v0.count);
+    double mean = 0;
+    for (auto& x : vel[k]) { x = noise(rng); mean += x; }
+    mean /= double(v0.count);
+    for (auto& x : vel[k]) x -= float(mean);
+  }
+  const float* vp[3] = {vel[0].data(), vel[1].data(), vel[2].data()};
+  gpu->overwrite_fluid(nullptr, vp);
+  for (int s = 0; s < 100; ++s) gpu->step();
+  const ParticleView v = gpu->fluid();
+  double p[3] = {0, 0, 0}, scale = 0;
+  for (std::size_t i = 0; i < v.count; ++i)
+    for (int k = 0; k < 3; ++k) {
+      p[k] += v.v[k][i];
+      scale += std::abs(v.v[k][i]);
+    }
+  const double pn = std::sqrt(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]);
+  std::printf("after %.4f s: |sum v| / sum |v| = %.3g\n", gpu->time(), pn / scale);
+  EXPECT_GT(scale, 0);
+  EXPECT_LT(pn / scale, 1e-5);
+  EXPECT_EQ(gpu->stats().particles_put_back, 0u);
+}
+
+// A box moving through still water drags it along: the fluid's mean velocity follows the box on
+// the GPU as on the CPU.
+TEST_F(GpuWcsph, MovingObstaclePushesTheFluid) {
+  SimSpec spec = test::tank(2, 0.4, 0.15, 0.005);
+  ObstacleSpec box;
+  box.shape = ObstacleShape::Box;
+  box.center = {{0.1, 0.08, 0}};
+  box.half_extents = {{0.02, 0.04, 0.02}};
+  box.motion = MotionKind::Velocity;
+  box.velocity = {{0.5, 0, 0}};
+  spec.obstacles.push_back(box);
+  auto cpu = make_simulation(spec, 2);
+  auto gpu = gpu::make_gpu_simulation(spec, 2);
+  for (int s = 0; s < 150; ++s) { cpu->step(); gpu->step(); }
+  auto mean_vx = [](const Simulation& s) {
+    const ParticleView v = s.fluid();
+    double m = 0;
+    for (std::size_t i = 0; i < v.count; ++i) m += v.v[0][i];
+    return m / double(v.count);
+  };
+  const double c = mean_vx(*cpu), g = mean_vx(*gpu);
+  std::printf("t = %.4f s: box at x = %.4f; fluid mean vx %.5f (CPU) %.5f (GPU) m/s\n", gpu->time(),
+              gpu->obstacle_center(0)[0], c, g);
+  EXPECT_GT(g, 0.01);
+  EXPECT_NEAR(g, c, 0.05 * c);
+  EXPECT_NEAR(gpu->obstacle_center(0)[0], 0.1 + 0.5 * gpu->time(), 1e-9);  // its prescribed path
+  EXPECT_NEAR(gpu->obstacle_center(0)[0], cpu->obstacle_center(0)[0], 1e-6);
+}
+
+// Checkpoints are the CPU's format: a GPU run resumes on the CPU and a CPU run on the GPU, and
+// each resumed run continues as a straight run on that backend does.
+TEST_F(GpuWcsph, CheckpointsResumeAcrossBackends) {
+  const SimSpec spec = test::dam_break_2d(0.1, 0.005);
+  const auto dir = std::filesystem::temp_directory_path() / fmt::format("rtsph_gpu_ckpt_{}", ::getpid());
+  std::filesystem::create_directories(dir);
+  for (bool gpu_first : {true, false}) {
+    auto make = [&](bool on_gpu) { return on_gpu ? gpu::make_gpu_simulation(spec, 1) : make_simulation(spec, 1); };
+    auto first = make(gpu_first);
+    for (int s = 0; s < 40; ++s) first->step();
+    const auto path = dir / "state.ckpt";
+    io::write_checkpoint(path, *first, 42);
+    // The straight run on the second backend from the same state, and the resumed one.
+    auto resumed = make(!gpu_first);
+    io::read_checkpoint(path, *resumed, 42);
+    auto again = make(!gpu_first);
+    io::read_checkpoint(path, *again, 42);
+    EXPECT_EQ(resumed->time(), first->time());
+    EXPECT_EQ(resumed->step_count(), 40u);
+    for (int s = 0; s < 40; ++s) { first->step(); resumed->step(); again->step(); }
+    const double e = relative_rms_density(*first, *resumed);
+    std::printf("%s -> %s: density relative RMS 40 steps after the resume: %.3g\n", gpu_first ? "GPU" : "CPU",
+                gpu_first ? "CPU" : "GPU", e);
+    EXPECT_LT(e, 1e-3);
+    EXPECT_NEAR(front(*resumed), front(*first), 0.01 * front(*first));
+    const ParticleView a = resumed->fluid(), b = again->fluid();
+    ASSERT_EQ(a.count, b.count);
+    EXPECT_EQ(0, std::memcmp(a.x[0], b.x[0], a.count * 4)) << "resuming is deterministic";
+  }
+  std::filesystem::remove_all(dir);
+}
+
+// A water column at rest: the bottom pressure settles at rho0 g H within WCSPH's 5%.
+TEST_F(GpuWcsph, HydrostaticTankSettlesToRhoGH) {
+  SimSpec spec = test::tank(2, 0.2, 0.2, 0.01);
+  spec.smoothing_ratio = 1.3;  // 2D WCSPH settles at h = 1.3 spacings (docs/validation.md)
+  auto gpu = gpu::make_gpu_simulation(spec, 1);
+  while (gpu->time() < 1.5) gpu->step();
+  const ParticleView v = gpu->fluid();
+  double sum = 0;
+  int count = 0;
+  for (std::size_t i = 0; i < v.count; ++i)
+    if (v.x[1][i] < 0.03 && v.x[0][i] > 0.05 && v.x[0][i] < 0.15) { sum += v.pressure[i]; ++count; }
+  ASSERT_GT(count, 0);
+  // Bottom-row particles sit at y ≈ 0.005..0.025: their depth is H - y.
+  double depth = 0;
+  for (std::size_t i = 0; i < v.count; ++i)
+    if (v.x[1][i] < 0.03 && v.x[0][i] > 0.05 && v.x[0][i] < 0.15) depth += 0.2 - v.x[1][i];
+  const double expected = 1000 * 9.81 * depth / count, measured = sum / count;
+  const SimStats st = gpu->stats();
+  std::printf("t = %.2f s: bottom pressure %.1f Pa vs rho g h %.1f Pa (ratio %.4f); KE %.3g J; put back %llu\n",
+              gpu->time(), measured, expected, measured / expected, st.kinetic_energy_j,
+              (unsigned long long)st.particles_put_back);
+  EXPECT_NEAR(measured / expected, 1.0, 0.05);
+  EXPECT_EQ(st.particles_put_back, 0u);
+}

@@ -10,6 +10,7 @@ namespace rtsph::app {
 struct BenchOptions {
   int dim = 3;
   std::string method = "wcsph";
+  std::string backend = "cpu";  // cpu or gpu (auto = cpu for bench)
   std::string particles = "10000,60000";
   int threads = 0;
   int steps = 30;

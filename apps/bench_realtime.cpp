@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "apps/bench.h"
+#include "apps/sim_backend.h"
 #include "io/atomic_file.h"
 #include "solvers/simulation.h"
 
@@ -28,12 +29,13 @@ struct Probe {
 // A probe that has fallen three times behind real time stops early: its factor is known to be
 // well below 1, and a large slow probe would otherwise cost minutes.
 Probe probe(const BenchOptions& o, double n, int threads) {
-  auto sim = make_simulation(dam_break_with(o.dim, n, o.method), threads);
+  auto sim = BackendSimulation::make(dam_break_with(o.dim, n, o.method), threads, o.backend);
   Probe p;
   p.fluid = sim->stats().fluid_particles;
   const auto t0 = std::chrono::steady_clock::now();
   while (sim->time() < o.window_s) {
     sim->step();
+    sim->wait_idle();
     p.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     if (p.wall_s > 3 * o.window_s) break;
   }
@@ -45,8 +47,8 @@ Probe probe(const BenchOptions& o, double n, int threads) {
 
 int bench_realtime(const BenchOptions& o) {
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
-  fmt::print("rtsph bench --realtime: {}D dam break, {}, {} threads, first {} s simulated\n",
-             o.dim, o.method, threads, o.window_s);
+  fmt::print("rtsph bench --realtime: {}D dam break, {}, {} threads, backend {}, first {} s simulated\n",
+             o.dim, o.method, threads, o.backend, o.window_s);
   fmt::print("{:>9} {:>7} {:>9} {:>9} {:>8}\n", "fluid", "steps", "sim s", "wall s", "RTF");
   nlohmann::ordered_json rows = nlohmann::json::array();
   auto run = [&](double n) {
@@ -84,8 +86,8 @@ int bench_realtime(const BenchOptions& o) {
     }
   }
   if (best > 0)
-    fmt::print("real-time capacity: {} fluid particles ({}D, {}, {} threads)\n", best, o.dim,
-               o.method, threads);
+    fmt::print("real-time capacity: {} fluid particles ({}D, {}, {} threads, backend {})\n", best, o.dim,
+               o.method, threads, o.backend);
   else
     fmt::print("real-time capacity: none: even the smallest dam break tried runs slower than "
                "real time\n");
@@ -94,6 +96,7 @@ int bench_realtime(const BenchOptions& o) {
     j["dimension"] = o.dim;
     j["method"] = o.method;
     j["threads"] = threads;
+    j["backend"] = o.backend;
     j["window_s"] = o.window_s;
     j["capacity_fluid_particles"] = best;
     j["probes"] = rows;

@@ -10,6 +10,7 @@
 #include "apps/bench.h"
 #include "apps/commands.h"
 #include "apps/run_summary.h"
+#include "apps/sim_backend.h"
 #include "io/atomic_file.h"
 #include "scene/scene.h"
 #include "solvers/simulation.h"
@@ -45,17 +46,19 @@ int bench(const BenchOptions& o) {
       throw std::invalid_argument(fmt::format("--particles: '{}': expected counts in [1, 1e9]", item));
   }
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
-  fmt::print("rtsph bench: {}D dam break, {}, cubic spline, h = spacing, {} threads, {} steps\n",
-             o.dim, o.method, threads, o.steps);
+  fmt::print("rtsph bench: {}D dam break, {}, cubic spline, h = spacing, {} threads, {} steps, backend {}\n",
+             o.dim, o.method, threads, o.steps, o.backend);
   fmt::print("{:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>12} {:>8}\n", "fluid", "boundary",
              "ms/step", "neigh", "density", "forces", "integr", "particle-st/s", "B/part");
   nlohmann::ordered_json rows = nlohmann::json::array();
   for (double n : sizes) {
-    auto sim = make_simulation(dam_break_with(o.dim, n, o.method), threads);
+    auto sim = BackendSimulation::make(dam_break_with(o.dim, n, o.method), threads, o.backend);
     for (int i = 0; i < 3; ++i) sim->step();  // warm caches and allocations
+    sim->wait_idle();
     sim->reset_stage_times();
     const auto t0 = std::chrono::steady_clock::now();
     for (int i = 0; i < o.steps; ++i) sim->step();
+    sim->wait_idle();
     const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     const auto st = sim->stats();
     const auto& tm = sim->stage_times();
@@ -81,6 +84,7 @@ int bench(const BenchOptions& o) {
     j["dimension"] = o.dim;
     j["method"] = o.method;
     j["threads"] = threads;
+    j["backend"] = o.backend;
     j["steps"] = o.steps;
     j["rows"] = rows;
     io::write_file_atomic(o.json, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
@@ -97,6 +101,8 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
   cmd->add_option("--steps", o->steps, "Timed steps per size")->check(CLI::Range(1, 1000000));
   cmd->add_option("--method", o->method, "Solver method")->check(CLI::IsMember(solver_methods()));
+  cmd->add_option("--backend", o->backend, "Where the solver runs: cpu or gpu (OpenGL compute through EGL)")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   cmd->add_option("--json", o->json, "Write the table as JSON to this file");
   cmd->add_flag("--realtime", o->realtime,
                 "Search for the largest dam break this method runs in real time");

@@ -22,6 +22,7 @@
 #include "scene/scene.h"
 #include "solvers/health.h"
 #include "solvers/simulation.h"
+#include "apps/sim_backend.h"
 
 namespace rtsph::app {
 
@@ -31,6 +32,7 @@ struct RunOptions {
   double until = -1;
   long long steps = -1;
   int threads = 0;
+  std::string backend;  // empty: the scene's solver.backend, else cpu
   std::vector<std::string> sets;
   std::string export_dir, format = "csv", attributes = "all", stats_json;
   double every = 0.02;
@@ -93,7 +95,7 @@ int run(const RunOptions& o) {
     throw std::invalid_argument("run: a SCENE is required (or --resume CHECKPOINT)");
   }
   SimSpec spec;
-  std::unique_ptr<Simulation> sim;
+  BackendSimulation sim;
   fs::path resumed_from;
   if (!o.resume.empty()) {
     resumed_from = resolve_resume_path(o.resume);
@@ -101,7 +103,7 @@ int run(const RunOptions& o) {
     if (!o.scene.empty()) {
       spec = load_scene(o.scene);
       for (const auto& s : o.sets) apply_override(spec, s);
-      sim = make_simulation(spec, o.threads);
+      sim = BackendSimulation::make(spec, o.threads, choose_backend(o.backend, spec, "cpu"));
       try {
         io::read_checkpoint(resumed_from, *sim, scene_hash(spec));
       } catch (const io::CheckpointError& e) {
@@ -114,14 +116,14 @@ int run(const RunOptions& o) {
       spec = stored;
       for (const auto& s : o.sets) apply_override(spec, s);
       check_resume_overrides(stored, spec);
-      sim = make_simulation(stored, o.threads);
+      sim = BackendSimulation::make(stored, o.threads, choose_backend(o.backend, spec, "cpu"));
       io::read_checkpoint(resumed_from, *sim, scene_hash(stored));
       if (scene_to_json(spec) != scene_to_json(stored)) sim->set_live_parameters(spec);
     }
   } else {
     spec = load_scene(o.scene);
     for (const auto& s : o.sets) apply_override(spec, s);
-    sim = make_simulation(spec, o.threads);
+    sim = BackendSimulation::make(spec, o.threads, choose_backend(o.backend, spec, "cpu"));
   }
   const bool resumed = !resumed_from.empty();
   const double until = o.until >= 0 ? o.until : (o.steps >= 0 ? std::numeric_limits<double>::infinity() : spec.end_time);
@@ -150,9 +152,9 @@ int run(const RunOptions& o) {
 
   const auto s0 = sim->stats();
   if (!o.quiet) {
-    std::fprintf(stderr, "rtsph run: %s (%dD, %s), %zu fluid + %zu boundary particles, c0 = %.1f m/s\n",
-                 spec.name.c_str(), spec.dimension, spec.method.c_str(), s0.fluid_particles,
-                 s0.boundary_particles, s0.c0);
+    std::fprintf(stderr, "rtsph run: %s (%dD, %s, %s), %zu fluid + %zu boundary particles, c0 = %.1f m/s\n",
+                 spec.name.c_str(), spec.dimension, spec.method.c_str(), sim.description().c_str(),
+                 s0.fluid_particles, s0.boundary_particles, s0.c0);
     if (resumed) {
       std::fprintf(stderr, "rtsph run: resumed from %s at t = %.6g s (step %llu)\n", resumed_from.c_str(),
                    sim->time(), static_cast<unsigned long long>(sim->step_count()));
@@ -327,6 +329,9 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--until", o->until, "Stop at this simulated time (s); default: the scene's end_time");
   cmd->add_option("--steps", o->steps, "Stop after this many steps");
   cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--backend", o->backend, "Where the solver runs: cpu, gpu (OpenGL compute, headless through EGL) "
+                                           "or auto (= cpu for run); default: the scene's solver.backend")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   cmd->add_option("--set", o->sets, "Override a scene parameter, e.g. --set fluid.spacing=0.01");
   cmd->add_option("--export", o->export_dir, "Write frames into this directory");
   cmd->add_option("--every", o->every, "Simulated seconds between exported frames")->check(CLI::PositiveNumber);

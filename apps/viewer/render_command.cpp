@@ -15,9 +15,12 @@
 #include "apps/commands.h"
 #include "apps/progress.h"
 #include "apps/run_summary.h"
+#include "apps/sim_backend.h"
 #include "apps/viewer/render_job.h"
 #include "apps/viewer/scene_view.h"
 #include "apps/viewer/view_settings.h"
+#include "gpu/backend.h"
+#include "gpu/gl_compute.h"
 #include "render/gl_context.h"
 #include "render/image_io.h"
 #include "render/renderer.h"
@@ -100,7 +103,17 @@ int render_scene(const RenderJob& job) {
   if (!single_png && !sink) throw std::runtime_error(err);
   if (!note.empty() && !job.quiet) std::fprintf(stderr, "rtsph render: %s\n", note.c_str());
 
-  auto sim = make_simulation(spec, job.threads);
+  // auto: the GPU when the renderer is a hardware driver and the GPU runs this scene.
+  std::string backend = choose_backend(job.backend, spec, "auto");
+  if (backend == "auto")
+    backend = !gpu::software_renderer() && gpu::gpu_cannot_run(spec).empty() ? "gpu" : "cpu";
+  if (backend == "gpu") {
+    if (const std::string why = gpu::compute_support_problem(); !why.empty())
+      throw BackendUnavailable("--backend gpu: " + why);
+    if (const std::string why = gpu::gpu_cannot_run(spec); !why.empty()) throw BackendUnavailable(why);
+  }
+  // The GPU simulation lives in this context; the renderer reads it back each frame.
+  auto sim = backend == "gpu" ? gpu::make_gpu_simulation(spec, job.threads) : make_simulation(spec, job.threads);
   render::Renderer renderer;
   setup_scene_view(spec, renderer, settings);
   render::Camera cam;
@@ -110,8 +123,8 @@ int render_scene(const RenderJob& job) {
   const double t_end = (frames - 1) / job.fps;
   if (!job.quiet) {
     auto st = sim->stats();
-    std::fprintf(stderr, "rtsph render: %s (%dD), %zu fluid + %zu boundary particles, %d frame%s at %g fps, %dx%d, %s\n",
-                 spec.name.c_str(), spec.dimension, st.fluid_particles, st.boundary_particles, frames,
+    std::fprintf(stderr, "rtsph render: %s (%dD, %s backend), %zu fluid + %zu boundary particles, %d frame%s at %g fps, %dx%d, %s\n",
+                 spec.name.c_str(), spec.dimension, backend.c_str(), st.fluid_particles, st.boundary_particles, frames,
                  frames == 1 ? "" : "s", job.fps, width, height, ctx->description().c_str());
   }
   Progress progress("render", std::max(t_end, 1e-9), job.quiet);
@@ -168,6 +181,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--colormap", o->colormap, "viridis or turbo")->capture_default_str();
   cmd->add_option("--range", o->range, "Fixed colour range MIN,MAX (default: automatic per frame)")->expected(2)->delimiter(',');
   cmd->add_option("--threads", o->threads, "Solver threads (0 = all cores)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--backend", o->backend, "Where the solver runs: cpu, gpu or auto (the GPU on a hardware "
+                                           "OpenGL driver, the CPU on a software one); default: the scene's solver.backend")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   cmd->add_option("--set", o->sets, "Override a scene parameter, e.g. --set fluid.spacing=0.04");
   cmd->add_flag("--quiet", o->quiet, "No progress on the terminal");
   cmd->add_flag("--time-passes", o->time_passes, "Print the CPU time of each surface pass (glFinish between passes)");

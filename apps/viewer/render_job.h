@@ -18,6 +18,7 @@ struct RenderJob {
   std::vector<double> range;
   double range_min = 0, range_max = 0;  // used when max > min
   int threads = 0;
+  std::string backend;       // cpu, gpu or auto; empty: the scene's solver.backend, else auto
   std::vector<std::string> sets;
   bool quiet = false;
   bool time_passes = false;  // print the surface passes' CPU time

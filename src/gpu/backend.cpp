@@ -4,17 +4,34 @@
 
 #include <fmt/format.h>
 
+#include <epoxy/gl.h>
+
 #include "gpu/gpu_wcsph.h"
 
 namespace rtsph::gpu {
 
 bool gpu_supports_method(const std::string& method) { return method == "wcsph"; }
 
-std::unique_ptr<Simulation> make_gpu_simulation(const SimSpec& spec, int threads) {
+std::string gpu_cannot_run(const SimSpec& spec) {
   if (!gpu_supports_method(spec.method))
-    throw std::invalid_argument(fmt::format(
-        "scene '{}': solver.method = \"{}\": the GPU backend runs \"wcsph\" so far; use --backend cpu",
-        spec.name, spec.method));
+    return fmt::format("scene '{}': solver.method = \"{}\": the GPU backend runs \"wcsph\" so far; use --backend cpu",
+                       spec.name, spec.method);
+  if (spec.periodic != PeriodicAxes::None)
+    return fmt::format("scene '{}': domain.periodic: the GPU backend has no periodic axes yet; use --backend cpu",
+                       spec.name);
+  return {};
+}
+
+bool software_renderer() {
+  const auto* r = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  const std::string name = r ? r : "";
+  for (const char* soft : {"llvmpipe", "softpipe", "swrast", "SVGA3D", "Software Rasterizer"})
+    if (name.find(soft) != std::string::npos) return true;
+  return false;
+}
+
+std::unique_ptr<Simulation> make_gpu_simulation(const SimSpec& spec, int threads) {
+  if (const std::string why = gpu_cannot_run(spec); !why.empty()) throw std::invalid_argument(why);
   if (spec.dimension == 2) return std::make_unique<GpuWcsph<2>>(spec, threads);
   return std::make_unique<GpuWcsph<3>>(spec, threads);
 }

@@ -10,6 +10,11 @@ namespace rtsph::gpu {
 
 /// The methods the GPU backend runs.
 bool gpu_supports_method(const std::string& method);
+/// Empty when the GPU backend can run `spec`, else one line naming the scene field it lacks.
+std::string gpu_cannot_run(const SimSpec& spec);
+/// True when the current context renders in software (Mesa llvmpipe/softpipe/swrast, VMware
+/// SVGA without a host GPU), where the CPU backend is the faster one: `auto` picks the CPU there.
+bool software_renderer();
 
 /// A GPU simulation of `spec` in the current context. Throws std::invalid_argument for what the
 /// backend cannot run (its message names the scene field) and std::runtime_error when the

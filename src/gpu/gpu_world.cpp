@@ -56,9 +56,8 @@ void kernel_constants(KernelType type, double h, SphParams& p) {
 template <int D>
 GpuWorld<D>::GpuWorld(const SimSpec& spec, int threads) : FluidWorld<D>(spec, threads) {
   if (const std::string why = compute_support_problem(); !why.empty()) throw std::runtime_error(why);
-  if (spec.periodic != PeriodicAxes::None)
-    throw std::invalid_argument(fmt::format(
-        "scene '{}': domain.periodic: the GPU backend has no periodic axes yet; use --backend cpu", spec.name));
+  if (spec.periodic != PeriodicAxes::None)  // backend.cpp's gpu_cannot_run says so to users
+    throw std::invalid_argument("the GPU backend has no periodic axes yet");
   defines_ = {fmt::format("DIM {}", D), fmt::format("KERNEL {}", int(spec.kernel))};
   compile_programs();
   glCreateBuffers(1, &params_ubo_);
@@ -388,6 +387,20 @@ void GpuWorld<D>::measure_energies(SimStats& s) const {
   s.kinetic_energy_j = r.x;
   s.potential_energy_j = r.y;
   s.max_speed = std::sqrt(r.z);
+}
+
+template <int D>
+std::optional<HealthFacts> GpuWorld<D>::health_facts() const {
+  if (loading_ || scalars_fresh_) {
+    // Nothing stepped since the host copies were made: they answer exactly.
+    return std::nullopt;
+  }
+  DVec4 r{};
+  stats_.download(&r, sizeof r, kDensity * sizeof(DVec4));
+  HealthFacts h;
+  h.non_finite = r.z > 0 || !std::isfinite(r.x);
+  h.max_density = this->prm_.rho0 * (1.0 + r.x);
+  return h;
 }
 
 template <int D>

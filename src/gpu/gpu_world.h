@@ -22,9 +22,13 @@ template <int D>
 class GpuWorld : public FluidWorld<D> {
  public:
   ~GpuWorld() override;
+  void wait_idle() const override { glFinish(); }
   ParticleView fluid() const override;
   BoundaryView boundary() const override;
   SimStats stats() const override;
+  /// From the density pass's reduction (positions and velocities as they were before the step's
+  /// last half kick; a NaN born in that kick is seen one step later).
+  std::optional<HealthFacts> health_facts() const override;
   void prepare_state(std::size_t fluid_count) override;
   std::vector<StateField> state_fields() override;
   void state_loaded() override;

@@ -3,6 +3,7 @@
 // Two Simulation objects share nothing, so they can run side by side (tests do).
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -38,6 +39,13 @@ struct SimStats {
   std::size_t bytes = 0;                // particle, grid and scratch storage
 };
 
+/// What the instability guard needs to know that all is well, for backends that can find it
+/// without handing over every particle (the GPU reduces it where the particles live).
+struct HealthFacts {
+  bool non_finite = false;      // a NaN or Inf in a fluid position, velocity, density or pressure
+  double max_density = 0;       // kg/m³, the largest fluid density
+};
+
 /// A radial push (strength > 0) or pull (< 0) applied by the viewer's mouse brush.
 struct Brush {
   bool active = false;
@@ -61,6 +69,9 @@ class Simulation {
 
   /// Advances one time step (adaptive or fixed, per the spec).
   virtual void step() = 0;
+  /// Blocks until the work step() queued has finished (a GPU backend returns from step() early);
+  /// timings around steps call this before reading the clock.
+  virtual void wait_idle() const {}
   virtual double time() const = 0;
   virtual std::uint64_t step_count() const = 0;
   virtual SimStats stats() const = 0;
@@ -90,6 +101,8 @@ class Simulation {
   /// sudden load can need more sweeps than allowed); the instability guard names it as the
   /// cause when the state then fails its checks.
   virtual std::string solver_failure() const { return {}; }
+  /// The guard's fast path: nullopt when the backend has nothing cheaper than fluid().
+  virtual std::optional<HealthFacts> health_facts() const { return std::nullopt; }
   /// Applies parameters that are safe to change while running (viscosity, α, CFL, gravity…).
   virtual void set_live_parameters(const SimSpec& s) = 0;
 

@@ -64,6 +64,7 @@ struct SimSpec {
 
   // solver
   std::string method = "wcsph";
+  std::string backend = "auto";    // "cpu", "gpu" or "auto" (the command's default; --backend wins)
   Eos eos = Eos::Tait;
   double speed_of_sound = 0;       // m/s; 0 = automatic, 10·sqrt(2 g H) (Monaghan 1994)
   double stiffness = 0;            // m²/s² (= Pa per kg/m³) for the linear EOS; 0 = c0²

@@ -1,77 +1,11 @@
 // A water column at rest in a closed tank must settle to hydrostatic pressure p = ρ0 g (H - y).
 #include <gtest/gtest.h>
 
-#include <algorithm>
-#include <cmath>
-#include <cstdio>
-#include <string>
-
-#include "test_scenes.h"
+#include "hydrostatic_check.h"
 
 namespace rtsph {
 namespace {
-
-struct Bottom {
-  double ratio = 0;  // mean over the bottom row of p / (ρ0 g (H - y))
-  double surface = 0;
-};
-
-Bottom bottom_pressure(const Simulation& sim, double spacing, double rho0, double g) {
-  const auto v = sim.fluid();
-  double top = 0;
-  for (std::size_t i = 0; i < v.count; ++i) top = std::max(top, double(v.x[1][i]));
-  const double H = top + 0.5 * spacing;
-  double sum = 0;
-  int n = 0;
-  for (std::size_t i = 0; i < v.count; ++i) {
-    if (v.x[1][i] > spacing) continue;
-    sum += v.pressure[i] / (rho0 * g * (H - v.x[1][i]));
-    ++n;
-  }
-  return {n ? sum / n : 0, H};
-}
-
-void settles_to_hydrostatic(int dim, double width, double height, double spacing,
-                            const std::string& method = "wcsph", double tolerance = 0.05,
-                            double t_end = 0) {
-  SimSpec spec = test::tank(dim, width, height, spacing);
-  spec.method = method;
-  // Damp the acoustic oscillation that the sudden start excites, so the test sees the settled
-  // state within a short run; the hydrostatic balance itself does not depend on α.
-  spec.artificial_viscosity = 0.1;
-  auto sim = make_simulation(spec, 0);
-  const double rho0 = spec.rest_density, g = 9.81;
-  double ke_early = 0, ratio_sum = 0;
-  int samples = 0;
-  if (t_end <= 0) t_end = dim == 2 ? 1.5 : 1.0;
-  while (sim->time() < t_end) {
-    sim->step();
-    // The peak of the start-up motion: early for WCSPH's acoustic slosh, later for DFSPH.
-    if (sim->time() > 0.2 && sim->time() < t_end - 0.3) ke_early = std::max(ke_early, sim->stats().kinetic_energy_j);
-    if (sim->time() > t_end - 0.3 && sim->step_count() % 20 == 0) {
-      ratio_sum += bottom_pressure(*sim, spacing, rho0, g).ratio;
-      ++samples;
-    }
-  }
-  const auto st = sim->stats();
-  const double ratio = ratio_sum / samples;
-  const Bottom b = bottom_pressure(*sim, spacing, rho0, g);
-  std::printf("%s %dD tank: bottom p / rho g (H - y) = %.4f (time-averaged), surface %.4f m, KE %.3g J "
-              "(peak %.3g J)\n", method.c_str(), dim, ratio, b.surface, st.kinetic_energy_j, ke_early);
-  EXPECT_NEAR(ratio, 1.0, tolerance);
-  EXPECT_LT(st.kinetic_energy_j, 0.25 * ke_early);  // the slosh decays from its peak
-  EXPECT_EQ(st.particles_put_back, 0u);
-  // No particle leaves the fluid region: the column only compresses slightly.
-  const auto v = sim->fluid();
-  for (std::size_t i = 0; i < v.count; ++i) {
-    ASSERT_GE(v.x[1][i], 0.0f);
-    ASSERT_LE(v.x[1][i], height + spacing);
-    for (int k = 0; k < dim; k += 2) {
-      ASSERT_GE(v.x[k][i], 0.0f);
-      ASSERT_LE(v.x[k][i], width);
-    }
-  }
-}
+using test::settles_to_hydrostatic;
 
 TEST(Hydrostatic, Tank2DSettlesToRhoGH) { settles_to_hydrostatic(2, 1.0, 1.0, 0.025); }
 TEST(Hydrostatic, Tank3DSettlesToRhoGH) { settles_to_hydrostatic(3, 0.3, 0.4, 0.025); }

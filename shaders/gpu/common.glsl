@@ -20,6 +20,13 @@ layout(std140, binding = RTSPH_U_PARAMS) uniform ParamsBlock { SphParams P; };
 #define BUFFER_BKEY layout(std430, binding = RTSPH_B_BKEY) buffer BKeyBuf { uint bkey[]; };
 #define BUFFER_BSTART layout(std430, binding = RTSPH_B_BSTART) buffer BStartBuf { uint bstart[]; };
 #define BUFFER_BPRESS layout(std430, binding = RTSPH_B_BPRESS) buffer BPressBuf { float bpress[]; };
+#define BUFFER_PRED layout(std430, binding = RTSPH_B_PRED) buffer PredBuf { vec4 pred[]; };
+#define BUFFER_LAMBDA layout(std430, binding = RTSPH_B_LAMBDA) buffer LambdaBuf { vec2 lam[]; };
+#define BUFFER_WGRAD layout(std430, binding = RTSPH_B_WGRAD) buffer WGradBuf { vec4 wgrad[]; };
+#define BUFFER_DENS_NEXT layout(std430, binding = RTSPH_B_DENS_NEXT) buffer DensNextBuf { vec4 dens_next[]; };
+#define BUFFER_POS_NEXT layout(std430, binding = RTSPH_B_POS_NEXT) buffer PosNextBuf { vec4 pos_next[]; };
+#define BUFFER_DELTA layout(std430, binding = RTSPH_B_DELTA) buffer DeltaBuf { vec4 delta[]; };
+#define BUFFER_OMEGA layout(std430, binding = RTSPH_B_OMEGA) buffer OmegaBuf { vec4 omega[]; };
 #define BUFFER_OBSTACLES layout(std430, binding = RTSPH_B_OBSTACLES) buffer ObstacleBuf { Obstacle obstacles[]; };
 
 // ---- Kernels: the CPU's formulas (core/kernels.h) with the constants its objects hold.
@@ -79,6 +86,25 @@ uint cell_key(vec3 p) {
     stride *= uint(dims);
   }
   return key;
+}
+
+// Pushes a particle that a correction took through a container wall plane back onto it.
+vec3 clamp_to_walls(vec3 x) {
+  for (int k = 0; k < DIM; ++k) x[k] = x[k] < P.wall_lo[k] ? P.wall_lo[k] : x[k] > P.wall_hi[k] ? P.wall_hi[k] : x[k];
+  return x;
+}
+
+// The safety net (FluidWorld::put_back_escaped): a non-finite or escaped position goes a
+// quarter spacing inside and loses its outward velocity; returns whether it moved.
+bool put_back(inout vec3 x, inout vec3 v) {
+  bool moved = false;
+  for (int k = 0; k < DIM; ++k) {
+    float lo = P.wall_lo[k], hi = P.wall_hi[k];
+    if (!(x[k] >= lo)) { x[k] = lo + P.put_back_margin; v[k] = max(v[k], 0.0); moved = true; }
+    else if (!(x[k] <= hi)) { x[k] = hi - P.put_back_margin; v[k] = min(v[k], 0.0); moved = true; }
+    if (isnan(v[k]) || isinf(v[k])) v[k] = 0.0;
+  }
+  return moved;
 }
 
 // The stencil as rows of three cells along x: row r of 3 (2D) or 9 (3D) covers the cells

@@ -1,5 +1,5 @@
-// Density and equation of state, one fluid particle per thread (WCSPH; density_only for the
-// other methods):
+// Density and equation of state, one fluid particle per thread (WCSPH; with DENSITY_ONLY the
+// density alone, for the other methods):
 //   rho_i = sum_j m W_ij + sum_b Psi_b W_ib            (Akinci et al. 2012, eq. 6)
 //   p_i = B((rho_i/rho0)^gamma - 1)  or  k(rho_i - rho0)  (Becker & Teschner 2007; linear)
 // dens[i] = (rho, p, p/rho^2, 1/rho), the EOS in double as on the CPU (the Tait bracket cancels).
@@ -25,6 +25,10 @@ void main() {
     }
   }
   float rho = P.mass * wf + wb;
+#ifdef DENSITY_ONLY
+  dens[i].x = rho;  // FluidWorld::compute_density: the density alone
+  return;
+#endif
   double rd = double(rho), x = rd / double(P.rho0), p;
   if ((P.flags & RTSPH_F_LINEAR_EOS) != 0u) {
     p = double(P.stiffness) * (rd - double(P.rho0));

@@ -6,15 +6,16 @@
 
 #include <epoxy/gl.h>
 
+#include "gpu/gpu_pbf.h"
 #include "gpu/gpu_wcsph.h"
 
 namespace rtsph::gpu {
 
-bool gpu_supports_method(const std::string& method) { return method == "wcsph"; }
+bool gpu_supports_method(const std::string& method) { return method == "wcsph" || method == "pbf"; }
 
 std::string gpu_cannot_run(const SimSpec& spec) {
   if (!gpu_supports_method(spec.method))
-    return fmt::format("scene '{}': solver.method = \"{}\": the GPU backend runs \"wcsph\" so far; use --backend cpu",
+    return fmt::format("scene '{}': solver.method = \"{}\": the GPU backend runs \"wcsph\" and \"pbf\" so far; use --backend cpu",
                        spec.name, spec.method);
   if (spec.periodic != PeriodicAxes::None)
     return fmt::format("scene '{}': domain.periodic: the GPU backend has no periodic axes yet; use --backend cpu",
@@ -32,6 +33,10 @@ bool software_renderer() {
 
 std::unique_ptr<Simulation> make_gpu_simulation(const SimSpec& spec, int threads) {
   if (const std::string why = gpu_cannot_run(spec); !why.empty()) throw std::invalid_argument(why);
+  if (spec.method == "pbf") {
+    if (spec.dimension == 2) return std::make_unique<GpuPbf<2>>(spec, threads);
+    return std::make_unique<GpuPbf<3>>(spec, threads);
+  }
   if (spec.dimension == 2) return std::make_unique<GpuWcsph<2>>(spec, threads);
   return std::make_unique<GpuWcsph<3>>(spec, threads);
 }

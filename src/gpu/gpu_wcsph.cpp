@@ -22,8 +22,8 @@ void GpuWcsph<D>::step() {
   }
   {
     ScopedTimer timer(this->times_.integrate_s);
-    this->write_params(dt);
-    this->kick_drift(dt);                                // v(t+dt/2), x(t+dt), walls, put-back
+    this->write_params(dt, 0.5 * dt);
+    this->kick_drift();                                  // v(t+dt/2), x(t+dt), walls, put-back
     this->advance_scene_gpu(this->time_ + dt, dt);       // obstacles, emitters
   }
   update_forces();                                       // a(t+dt)

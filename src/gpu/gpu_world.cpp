@@ -70,7 +70,7 @@ GpuWorld<D>::GpuWorld(const SimSpec& spec, int threads) : FluidWorld<D>(spec, th
   capacity_ = n + std::size_t(count_particles(spec).emitted_max);
   for (Buffer* b : {&pos_, &vel_, &acc_, &dens_, &pos_alt_, &vel_alt_}) b->reserve(capacity_ * sizeof(vec4));
   for (Buffer* b : {&id_, &id_alt_}) b->reserve(capacity_ * 4);
-  write_params(0);
+  write_params(0, 0);
   upload_fluid(0, n);
   upload_boundary();
   upload_obstacles();
@@ -86,6 +86,11 @@ template <int D>
 void GpuWorld<D>::compile_programs() {
   sorter_ = std::make_unique<CellSorter>(defines_);
   density_ = ComputeProgram("density.comp", defines_);
+  {
+    auto d = defines_;
+    d.push_back("DENSITY_ONLY 1");
+    density_only_ = ComputeProgram("density.comp", d);
+  }
   boundary_pressure_ = ComputeProgram("boundary_pressure.comp", defines_);
   forces_ = ComputeProgram("forces.comp", defines_);
   kick_ = ComputeProgram("kick.comp", defines_);
@@ -102,7 +107,9 @@ void GpuWorld<D>::compile_programs() {
 }
 
 template <int D>
-void GpuWorld<D>::write_params(double dt) {
+void GpuWorld<D>::write_params(double dt, double kick_dt) {
+  params_dt_ = dt;
+  params_kick_dt_ = kick_dt;
   const auto& prm = this->prm_;
   const auto& s = this->spec_;
   const auto& grid = this->ctx_.fluid_grid;
@@ -139,7 +146,7 @@ void GpuWorld<D>::write_params(double dt) {
   p.tait_gamma = Real(s.tait_gamma);
   p.stiffness = Real(prm.stiffness);
   p.dt = Real(dt);
-  p.half_dt = Real(0.5 * dt);
+  p.kick_dt = Real(kick_dt);
   p.put_back_margin = Real(0.25 * s.spacing);
   p.fluid_count = glsl::uint(this->fluid_.size());
   p.boundary_count = glsl::uint(this->boundary_.size());
@@ -290,6 +297,12 @@ void GpuWorld<D>::density_and_pressure() {
 }
 
 template <int D>
+void GpuWorld<D>::density_only() {
+  bind_all();
+  density_only_.dispatch(this->fluid_.size());
+}
+
+template <int D>
 void GpuWorld<D>::boundary_pressure() {
   bind_all();
   boundary_pressure_.dispatch(this->boundary_.size());
@@ -309,7 +322,7 @@ void GpuWorld<D>::kick(double dt) {
 }
 
 template <int D>
-void GpuWorld<D>::kick_drift(double) {
+void GpuWorld<D>::kick_drift() {
   bind_all();
   put_back_counter_.bind(RTSPH_B_REDUCE);
   kick_drift_.dispatch(this->fluid_.size());
@@ -319,7 +332,6 @@ template <int D>
 void GpuWorld<D>::advance_scene_gpu(double t_new, double dt) {
   if (this->update_obstacle_states(t_new, dt)) {
     upload_obstacles();
-    write_params(dt);
     bind_all();
     move_boundary_.dispatch(this->boundary_.size());
     this->stop_user_driven_obstacles();
@@ -327,7 +339,7 @@ void GpuWorld<D>::advance_scene_gpu(double t_new, double dt) {
   const std::size_t before = this->fluid_.size();
   this->emit_particles(t_new);
   if (this->fluid_.size() > before) upload_fluid(before, this->fluid_.size() - before);
-  write_params(dt);  // the counts may have changed
+  write_params(params_dt_, params_kick_dt_);  // the counts may have changed
 }
 
 
@@ -507,7 +519,7 @@ void GpuWorld<D>::state_loaded() {
     for (Buffer* b : {&pos_, &vel_, &acc_, &dens_, &pos_alt_, &vel_alt_}) b->reserve(capacity_ * sizeof(vec4));
     for (Buffer* b : {&id_, &id_alt_}) b->reserve(capacity_ * 4);
   }
-  write_params(this->dt_);
+  write_params(this->dt_, 0);
   upload_fluid(0, n);
   upload_boundary();
   upload_obstacles();

@@ -44,21 +44,31 @@ class GpuWorld : public FluidWorld<D> {
   // Stages, in the order a step calls them.
   struct Extremes { double v2 = 0, a2 = 0; };
   Extremes gpu_max_speed_and_acceleration();  // reads back 32 bytes
-  void write_params(double dt);               // the step's constants (SphParams) to the GPU
-  void kick_drift(double dt);                 // v += a dt/2; x += v dt; walls; put-back
+  /// The step's constants (SphParams) to the GPU; kick_dt is kick_drift's kick (WCSPH dt/2, PBF dt).
+  void write_params(double dt, double kick_dt);
+  void kick_drift();                          // v += a kick_dt; x += v dt; walls; put-back
   void advance_scene_gpu(double t_new, double dt);  // obstacles and emitters
   void sort_particles();                      // fluid (and moving boundary) into cells
   void density_and_pressure();                // ρ, p, p/ρ², 1/ρ (density.comp)
+  void density_only();                        // ρ alone (FluidWorld::compute_density)
   void measure_density_error_gpu();           // max and mean compression, on the GPU
   void boundary_pressure();                   // Adami 2012's wall pressure
   void forces();                              // the acceleration sum (forces.comp)
   void kick(double dt);                       // v += a dt
   /// After a step: the host copies are stale until the next read.
   void mark_stale() { host_fresh_ = false; scalars_fresh_ = false; }
+  /// Binds every shared buffer to its layout.h binding (before a method's own passes too).
+  void bind_all() const;
+  const std::vector<std::string>& defines() const { return defines_; }
+  /// The fluid buffer capacity (particles); a method sizes its own arrays to it.
+  std::size_t capacity() const { return capacity_; }
+
+  // Particle buffers (layout.h's bindings); *_alt are the sort's gather targets.
+  Buffer pos_, vel_, acc_, dens_, id_, pos_alt_, vel_alt_, id_alt_;
+  Buffer put_back_counter_;
 
  private:
   void compile_programs();
-  void bind_all() const;
   void upload_fluid(std::size_t first, std::size_t count);
   void upload_boundary();
   void upload_obstacles();
@@ -71,14 +81,13 @@ class GpuWorld : public FluidWorld<D> {
 
   std::vector<std::string> defines_;
   std::unique_ptr<CellSorter> sorter_;
-  ComputeProgram density_, boundary_pressure_, forces_, kick_, kick_drift_, move_boundary_;
+  ComputeProgram density_, density_only_, boundary_pressure_, forces_, kick_, kick_drift_, move_boundary_;
   ComputeProgram reduce_[3], reduce_final_[3];
   GLuint params_ubo_ = 0;
-  // Particle buffers (layout.h's bindings); *_alt are the sort's gather targets.
-  Buffer pos_, vel_, acc_, dens_, id_, pos_alt_, vel_alt_, id_alt_;
   Buffer bpos_, bvel_, bnormal_, blocal_, bpress_, bpos_alt_, bvel_alt_, bnormal_alt_, blocal_alt_;
-  Buffer obstacles_buf_, partials_, stats_, put_back_counter_;
+  Buffer obstacles_buf_, partials_, stats_;
   SortedCells fluid_cells_, boundary_cells_;
+  double params_dt_ = 0, params_kick_dt_ = 0;  // what write_params() last wrote
   std::size_t capacity_ = 0;        // fluid particles the buffers hold (emitters included)
   std::uint64_t put_back_base_ = 0; // put-backs before the GPU counter was last zeroed
   bool boundary_sorted_ = false;

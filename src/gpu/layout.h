@@ -57,6 +57,15 @@ struct alignas(32) dvec4 { double x, y, z, w; };
 #define RTSPH_B_STATS 31     // dvec4 results of the reductions (gpu_world.cpp, StatSlot)
 #define RTSPH_BINDINGS 32
 #define RTSPH_U_PARAMS 0     // uniform block binding of SphParams
+// PBF's own arrays borrow the gather bindings (the sort rebinds those before each use; no PBF
+// pass runs during a sort), so that no driver needs more than 32 storage bindings.
+#define RTSPH_B_PRED RTSPH_B_GATHER_IN0       // vec4: predicted positions x*
+#define RTSPH_B_LAMBDA RTSPH_B_GATHER_IN1     // vec2: lambda of this iteration, its sum over them
+#define RTSPH_B_WGRAD RTSPH_B_GATHER_IN2      // vec4: sum_b Psi_b grad W_ib (the walls' gradient)
+#define RTSPH_B_DENS_NEXT RTSPH_B_GATHER_IN3  // vec4: dens of the corrected positions
+#define RTSPH_B_POS_NEXT RTSPH_B_GATHER_OUT0  // vec4: positions after a Jacobi correction
+#define RTSPH_B_DELTA RTSPH_B_GATHER_OUT1     // vec4: XSPH and vorticity velocity change
+#define RTSPH_B_OMEGA RTSPH_B_GATHER_OUT2     // vec4: vorticity
 
 // Flags in SphParams.flags.
 #define RTSPH_F_LINEAR_EOS 1u
@@ -78,7 +87,7 @@ struct SphParams {
   float mass, support2, eps, ach;  // kg, m^2, 0.01h^2 (m^2), alpha c0 h (m^2/s)
   float nu, dmin, inv_rho0, rho0;  // m^2/s, m (no-slip floor), m^3/kg, kg/m^3
   float tait_b, tait_gamma, stiffness, brush_strength;  // Pa, -, m^2/s^2, m/s^2
-  float dt, half_dt, put_back_margin, pad0;  // s, s, m
+  float dt, kick_dt, put_back_margin, pad0;  // s, s (the kick before the drift), m
   uint fluid_count, boundary_count, flags, obstacle_count;
 };
 

@@ -34,6 +34,10 @@ check test -s "$work/ck/ckpt_000000040.ckpt"
 check test $? -eq 0
 check grep -q '"steps": 10' "$work/r.json"
 
+# PBF runs on the GPU too.
+"$bin" run dam_break_3d --set fluid.spacing=0.05 --set solver.method=pbf --backend gpu --steps 5 --quiet >/dev/null
+check test $? -eq 0
+
 # bench and render.
 out=$("$bin" bench --backend gpu --dim 2 --particles 400 --steps 5 2>&1)
 check test $? -eq 0
@@ -43,7 +47,7 @@ check test $? -eq 0
 check test -s "$work/g.png"
 
 # Refusals: one line, exit 2.
-for args in "--set solver.method=pbf" "--set solver.method=dfsph"; do
+for args in "--set solver.method=dfsph"; do
   "$bin" run dam_break_2d "${small[@]}" $args --backend gpu --steps 1 2>"$work/e" >/dev/null
   rc=$?
   check test $rc -eq 2

@@ -1,0 +1,32 @@
+// PBF, Algorithm 1 lines 13-14, the Jacobi iteration's second half:
+//   dx_i = (1/rho0)[sum_j m (lambda_i + lambda_j + s_corr) grad W_ij + sum_b Psi_b 2 lambda_i grad W_ib]  (eq. 14)
+//   s_corr = -k (W(r)/W(dq))^n                                                                            (eq. 13)
+// then x_i + dx_i, stopped on a container wall plane (collision response), into pos_next: every
+// correction of an iteration reads the same positions.
+BUFFER_POS BUFFER_FKEY BUFFER_FSTART BUFFER_LAMBDA BUFFER_WGRAD BUFFER_POS_NEXT
+uniform float inv_w_dq, k_corr;
+uniform int n_corr;
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= P.fluid_count) return;
+  vec3 xi = pos[i].xyz;
+  float li = lam[i].x;
+  uint key = fkey[i];
+  vec3 a = vec3(0.0);
+  for (int r = 0; r < kRows; ++r) {
+    uvec2 c = stencil_row(key, r);
+    for (uint j = fstart[c.x]; j < fstart[c.y]; ++j) {
+      vec3 d = xi - pos[j].xyz;
+      float r2 = dot(d, d);
+      if (r2 >= P.support2) continue;
+      float q = kernel_w(r2) * inv_w_dq, qn = q;
+      for (int p = 1; p < n_corr; ++p) qn *= q;
+      a += (li + lam[j].x - k_corr * qn) * kernel_g(r2) * d;
+    }
+  }
+  vec3 dx = (P.mass * P.inv_rho0) * a + (2.0 * li * P.inv_rho0) * wgrad[i].xyz;
+#if DIM == 2
+  dx.z = 0.0;
+#endif
+  pos_next[i] = vec4(clamp_to_walls(xi + dx), 0.0);
+}

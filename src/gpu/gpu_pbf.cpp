@@ -1,0 +1,164 @@
+#include "gpu/gpu_pbf.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "core/timer.h"
+#include "gpu/layout.h"
+
+namespace rtsph::gpu {
+
+namespace {
+// The CPU's Jacobi relaxation for a two-sided constraint (solvers/pbf.cpp, kTwoSidedRelax).
+constexpr double kTwoSidedRelax = 0.5;
+}  // namespace
+
+template <int D>
+GpuPbf<D>::GpuPbf(const SimSpec& spec, int threads) : GpuWorld<D>(spec, threads) {
+  const auto& d = this->defines();
+  external_ = ComputeProgram("pbf_external.comp", d);
+  copy_ = ComputeProgram("copy_positions.comp", d);
+  lambda_ = ComputeProgram("pbf_lambda.comp", d);
+  correct_ = ComputeProgram("pbf_correct.comp", d);
+  velocity_ = ComputeProgram("pbf_velocity.comp", d);
+  xsph_ = ComputeProgram("pbf_xsph.comp", d);
+  vorticity_ = ComputeProgram("pbf_vorticity.comp", d);
+  apply_ = ComputeProgram("pbf_apply.comp", d);
+  lattice_gradient_norm_ = this->lattice_gradient_sum() / (this->prm_.rho0 * this->prm_.rho0);
+  this->sort_particles();  // the cell ranges (the fluid is already in cell order)
+  this->density_only();
+  this->measure_density_error_gpu();
+  this->mark_stale();
+  this->reset_stage_times();
+}
+
+// Algorithm 1: apply forces, predict, find neighbours, solve, update velocity, XSPH/vorticity.
+template <int D>
+void GpuPbf<D>::step() {
+  const double dt = choose_time_step();
+  {
+    ScopedTimer timer(this->times_.integrate_s);
+    this->write_params(dt, dt);
+    this->bind_all();
+    external_.dispatch(this->fluid_.size());       // gravity, brush, walls' hydrostatic part (line 2)
+    this->kick_drift();                            // v += Δt a; x* = x + Δt v, walls (line 3)
+    this->advance_scene_gpu(this->time_ + dt, dt); // obstacles, emitters
+  }
+  {
+    ScopedTimer timer(this->times_.neighbours_s);
+    this->sort_particles();                        // lines 5-7
+  }
+  const std::size_t n = this->fluid_.size();
+  for (Buffer* b : {&pred_, &wgrad_, &delta_, &omega_}) b->reserve(this->capacity() * 16);
+  lambda_buf_.reserve(this->capacity() * 8);
+  this->bind_all();
+  pred_.bind(RTSPH_B_PRED);
+  copy_.dispatch(n);                               // x*, kept for the velocity update
+  solve_density_constraint(dt);                    // lines 8-19
+  {
+    ScopedTimer timer(this->times_.integrate_s);
+    this->bind_all();
+    pred_.bind(RTSPH_B_PRED);
+    lambda_buf_.bind(RTSPH_B_LAMBDA);
+    this->put_back_counter_.bind(RTSPH_B_REDUCE);
+    velocity_.set("inv_dt", Real(1.0 / dt));
+    glProgramUniform1d(velocity_.id(), glGetUniformLocation(velocity_.id(), "pressure_scale"),
+                       -1.0 / (this->prm_.rho0 * dt * dt));
+    velocity_.dispatch(n);                         // line 21, the equivalent pressure, put-back
+  }
+  xsph_and_vorticity(dt);                          // line 22, and the density reached
+  this->measure_density_error_gpu();
+  this->time_ += dt;
+  this->dt_ = dt;
+  ++this->steps_;
+  this->mark_stale();
+}
+
+// A frame step split into substeps, shortened when the fastest particle would cross more than
+// cfl spacings (the CPU's Pbf::choose_time_step).
+template <int D>
+double GpuPbf<D>::choose_time_step() {
+  const SimSpec& s = this->spec_;
+  double dt = s.pbf_time_step / std::max(1, s.pbf_substeps);
+  if (s.pbf_cfl > 0) {
+    const double vmax = std::sqrt(this->gpu_max_speed_and_acceleration().v2);
+    if (vmax > 0) dt = std::min(dt, s.pbf_cfl * s.spacing / vmax);
+  }
+  return dt;
+}
+
+template <int D>
+void GpuPbf<D>::solve_density_constraint(double) {
+  const SimSpec& s = this->spec_;
+  const std::size_t n = this->fluid_.size();
+  iterations_ = std::max(1, s.pbf_iterations);
+  lambda_buf_.fill_zero();  // Σλ starts at 0
+  lambda_.set("eps", Real(s.pbf_relaxation * lattice_gradient_norm_));
+  lambda_.set("omega_relax", Real(s.clamp_negative_pressure ? 1.0 : kTwoSidedRelax));
+  const double dq = s.pbf_scorr_dq * this->prm_.support;
+  const float w_dq = with_kernel<D>(s.kernel, this->prm_.h, [&](const auto& K) { return float(K.value(float(dq * dq))); });
+  correct_.set("inv_w_dq", Real(1.0 / double(w_dq)));
+  correct_.set("k_corr", Real(s.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30)));
+  correct_.set("n_corr", GLint(s.pbf_scorr_n));
+  for (int it = 0; it < iterations_; ++it) {
+    {
+      ScopedTimer timer(this->times_.density_s);
+      this->bind_all();
+      lambda_buf_.bind(RTSPH_B_LAMBDA);
+      wgrad_.bind(RTSPH_B_WGRAD);
+      lambda_.dispatch(n);
+    }
+    ScopedTimer timer(this->times_.forces_s);
+    this->bind_all();
+    lambda_buf_.bind(RTSPH_B_LAMBDA);
+    wgrad_.bind(RTSPH_B_WGRAD);
+    this->pos_alt_.bind(RTSPH_B_POS_NEXT);
+    correct_.dispatch(n);
+    this->pos_.swap(this->pos_alt_);  // Jacobi: all move at once
+  }
+}
+
+template <int D>
+void GpuPbf<D>::xsph_and_vorticity(double dt) {
+  const SimSpec& s = this->spec_;
+  const std::size_t n = this->fluid_.size();
+  if (s.pbf_xsph <= 0 && s.pbf_vorticity <= 0) {
+    ScopedTimer timer(this->times_.density_s);
+    this->density_only();
+    return;
+  }
+  ScopedTimer timer(this->times_.forces_s);
+  const bool vort = s.pbf_vorticity > 0;
+  // The new density goes to a spare buffer (the volumes read the old one), then takes its place.
+  Buffer& dens_next = this->vel_alt_;  // free until the next sort's gather
+  dens_next.reserve(this->capacity() * 16);
+  this->bind_all();
+  dens_next.bind(RTSPH_B_DENS_NEXT);
+  delta_.bind(RTSPH_B_DELTA);
+  omega_.bind(RTSPH_B_OMEGA);
+  xsph_.set("xsph_c", Real(s.pbf_xsph));
+  xsph_.set("vorticity", GLint(vort ? 1 : 0));
+  xsph_.dispatch(n);
+  this->dens_.swap(dens_next);
+  if (vort) {
+    this->bind_all();
+    delta_.bind(RTSPH_B_DELTA);
+    omega_.bind(RTSPH_B_OMEGA);
+    vorticity_.set("step_eps", Real(dt * s.pbf_vorticity));
+    vorticity_.dispatch(n);
+  }
+  this->bind_all();
+  delta_.bind(RTSPH_B_DELTA);
+  apply_.dispatch(n);
+}
+
+template <int D>
+void GpuPbf<D>::add_method_stats(SimStats& s) const {
+  s.pressure_iterations = iterations_;
+  s.mean_pressure_iterations = iterations_;
+}
+
+template class GpuPbf<2>;
+template class GpuPbf<3>;
+
+}  // namespace rtsph::gpu

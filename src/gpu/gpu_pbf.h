@@ -1,0 +1,26 @@
+#pragma once
+// Position Based Fluids on the GPU: the CPU method's algorithm (solvers/pbf.h, Macklin & Müller
+// 2013, Algorithm 1) stage for stage, each stage a compute pass (shaders/gpu/pbf_*.comp).
+#include "gpu/gpu_world.h"
+
+namespace rtsph::gpu {
+
+template <int D>
+class GpuPbf final : public GpuWorld<D> {
+ public:
+  GpuPbf(const SimSpec& spec, int threads);
+  void step() override;
+
+ private:
+  double choose_time_step();
+  void solve_density_constraint(double dt);  // λ, then Δx, Jacobi (eqs. 11-14)
+  void xsph_and_vorticity(double dt);        // eqs. 15-17, and ρ at the corrected positions
+  void add_method_stats(SimStats& s) const override;
+
+  ComputeProgram external_, copy_, lambda_, correct_, velocity_, xsph_, vorticity_, apply_;
+  Buffer pred_, lambda_buf_, wgrad_, delta_, omega_;
+  double lattice_gradient_norm_ = 0;  // Σⱼ|∇ⱼCᵢ|² inside the rest lattice (1/m²)
+  int iterations_ = 0;
+};
+
+}  // namespace rtsph::gpu

@@ -14,6 +14,8 @@
 #include "gpu/backend.h"
 #include "gpu/gl_compute.h"
 #include "io/checkpoint.h"
+#include "render/camera.h"
+#include "render/renderer.h"
 #include "hydrostatic_check.h"
 #include "test_scenes.h"
 
@@ -276,4 +278,51 @@ TEST_F(GpuBackend, WcsphTankSettlesToRhoGH) {
 TEST_F(GpuBackend, PbfTankSettlesToRhoGH) {
   test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "pbf", 0.03, 3.0,
                                [](const SimSpec& s) { return gpu::make_gpu_simulation(s, 1); });
+}
+
+// Drawing without a copy (issue 10, §3): the renderer pointed at the GPU's own buffers draws the
+// same picture as from the arrays read back, in both styles and with colour by pressure.
+TEST_F(GpuBackend, DrawsFromItsBuffersAsFromACopy) {
+  SimSpec spec = dam_break_3d(0.1, 0.01);
+  auto gpu = gpu::make_gpu_simulation(spec, 1);
+  for (int s = 0; s < 30; ++s) gpu->step();
+  const auto device = gpu->device_particles();
+  ASSERT_TRUE(device.has_value());
+  const ParticleView host = gpu->fluid();
+  EXPECT_EQ(device->count, host.count);
+  const int W = 160, H = 96;
+  render::Camera cam;
+  cam.frame({0, 0, 0}, {0.4f, 0.25f, 0.1f}, float(W) / H);
+  for (auto style : {render::Style::Particles, render::Style::Surface}) {
+    render::RenderSettings s;
+    s.style = style;
+    s.color = render::ColorMode::Pressure;
+    s.legend = false;
+    s.grid = false;
+    s.walls = false;
+    std::vector<unsigned char> img[2];
+    for (int pass = 0; pass < 2; ++pass) {
+      render::Renderer r;
+      r.set_domain(3, {0, 0, 0}, {0.4f, 0.25f, 0.1f});
+      if (pass == 0) r.use_device(*device, nullptr);
+      else r.upload(host, nullptr);
+      render::OffscreenTarget target(W, H);
+      target.bind();
+      r.draw(cam, W, H, s);
+      img[pass] = target.read_rgba();
+      if (pass == 1) {
+        const auto [lo, hi] = r.data_range(render::ColorMode::Pressure);
+        EXPECT_FLOAT_EQ(device->pressure_min, lo);
+        EXPECT_FLOAT_EQ(device->pressure_max, hi);
+      }
+    }
+    int worst = 0, water = 0;
+    for (std::size_t i = 0; i < img[0].size(); ++i) worst = std::max(worst, std::abs(int(img[0][i]) - int(img[1][i])));
+    for (std::size_t i = 0; i < img[0].size(); i += 4)  // drawn: not the background (corner pixel)
+      water += std::abs(int(img[0][i]) - img[0][0]) + std::abs(int(img[0][i + 1]) - img[0][1]) +
+                   std::abs(int(img[0][i + 2]) - img[0][2]) > 30;
+    std::printf("style %d: %d fluid pixels, largest channel difference %d\n", int(style), water, worst);
+    EXPECT_GT(water, 100);
+    EXPECT_LE(worst, 1);
+  }
 }

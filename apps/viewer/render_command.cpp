@@ -138,9 +138,11 @@ int render_scene(const RenderJob& job) {
     const auto b = std::chrono::steady_clock::now();
     sim_s += std::chrono::duration<double>(b - a).count();
     if (!single_png || i == frames - 1) {
-      const ParticleView fluid = sim->fluid();
       const BoundaryView boundary = sim->boundary();
-      renderer.upload(fluid, &boundary);
+      if (const auto device = sim->device_particles())
+        renderer.use_device(*device, &boundary);  // the GPU backend: drawn from its buffers
+      else
+        renderer.upload(sim->fluid(), &boundary);
       renderer.upload_solids(obstacle_solids(*sim));
       target.bind();
       renderer.draw(cam, width, height, settings);

@@ -3,6 +3,8 @@
 //   0: (max |v|^2, max |a|^2)                    the adaptive time step
 //   1: (max e, sum e, non-finite count, -)       e = max(0, rho/rho0 - 1); the health check
 //   2: (sum m|v|^2/2, sum -m g.x, max |v|^2, -)  energies and the maximum speed
+//   3: (max |v|^2, max rho, max -rho, max p)     the colour scale's ranges (drawing)
+//   4: (max -p, -, -, -)
 // FINAL = 0: partials[1 + block] for each block; FINAL = 1: reduces those into stats[slot]
 // (mode 1 also keeps the running maximum in stats[slot].w).
 BUFFER_POS BUFFER_VEL BUFFER_ACC BUFFER_DENS
@@ -12,9 +14,15 @@ uniform uint n, slot;
 uniform vec3 g_energy;  // mode 2: gravity alone (the potential energy; not the body force)
 shared dvec4 tmp[RTSPH_WG];
 
+#if MODE >= 3
+const dvec4 kIdentity = dvec4(-1e300lf);
+#else
+const dvec4 kIdentity = dvec4(0.0lf);
+#endif
+
 dvec4 combine(dvec4 a, dvec4 b) {
-#if MODE == 0
-  return dvec4(max(a.x, b.x), max(a.y, b.y), 0.0lf, 0.0lf);
+#if MODE == 0 || MODE >= 3
+  return max(a, b);
 #elif MODE == 1
   return dvec4(max(a.x, b.x), a.y + b.y, a.z + b.z, 0.0lf);
 #else
@@ -33,16 +41,22 @@ dvec4 item(uint i) {
   double e = max(0.0lf, double(d.x) * double(P.inv_rho0) - 1.0lf);
   double nonfinite = (bad(pos[i]) || bad(vel[i]) || bad(vec4(d.xy, 0.0, 0.0))) ? 1.0lf : 0.0lf;
   return dvec4(e, e, nonfinite, 0.0lf);
-#else
+#elif MODE == 2
   dvec3 v = dvec3(vel[i].xyz), x = dvec3(pos[i].xyz), g = dvec3(g_energy);
   double v2 = v.x * v.x + v.y * v.y + v.z * v.z;
   return dvec4(0.5lf * double(P.mass) * v2, -double(P.mass) * (g.x * x.x + g.y * x.y + g.z * x.z), v2, 0.0lf);
+#elif MODE == 3
+  dvec3 v = dvec3(vel[i].xyz);
+  vec4 d = dens[i];
+  return dvec4(v.x * v.x + v.y * v.y + v.z * v.z, double(d.x), -double(d.x), double(d.y));
+#else
+  return dvec4(-double(dens[i].y), -1e300lf, -1e300lf, -1e300lf);
 #endif
 }
 
 void main() {
   uint t = gl_LocalInvocationID.x;
-  dvec4 acc_ = dvec4(0.0lf);
+  dvec4 acc_ = kIdentity;
 #if FINAL == 0
   uint i = gl_GlobalInvocationID.x;
   if (i < n) acc_ = item(i);

@@ -61,6 +61,16 @@ struct ParticleView {
   const uint32_t* id = nullptr;
 };
 
+/// Where a GPU backend keeps the fluid (OpenGL buffer names, one vec4 per particle), so a renderer
+/// in the same context draws it without a copy: position xyz, velocity xyz, density (ρ, p, ·, ·).
+/// The ranges are for the colour scale, reduced on the GPU.
+struct DeviceParticles {
+  unsigned position = 0, velocity = 0, density = 0;
+  std::size_t count = 0;
+  int dim = 3;
+  float max_speed = 0, pressure_min = 0, pressure_max = 0, density_min = 0, density_max = 0;
+};
+
 struct BoundaryView {
   int dim = 3;
   std::size_t count = 0;

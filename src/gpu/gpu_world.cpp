@@ -15,7 +15,7 @@ using glsl::SphParams;
 using glsl::vec4;
 
 // Slots of the stats buffer (reduce.comp writes them).
-enum StatSlot : GLuint { kExtremes = 0, kDensity = 1, kEnergy = 2, kSlots = 3 };
+enum StatSlot : GLuint { kExtremes = 0, kDensity = 1, kEnergy = 2, kRanges = 3, kRanges2 = 4, kSlots = 5 };
 struct alignas(32) DVec4 { double x, y, z, w; };
 
 GLuint blocks_of(std::size_t n) { return GLuint((n + RTSPH_WG - 1) / RTSPH_WG); }
@@ -96,7 +96,7 @@ void GpuWorld<D>::compile_programs() {
   kick_ = ComputeProgram("kick.comp", defines_);
   kick_drift_ = ComputeProgram("kick_drift.comp", defines_);
   move_boundary_ = ComputeProgram("move_boundary.comp", defines_);
-  for (int m = 0; m < 3; ++m) {
+  for (int m = 0; m < 5; ++m) {
     auto d = defines_;
     d.push_back(fmt::format("MODE {}", m));
     d.push_back("FINAL 0");
@@ -346,54 +346,41 @@ void GpuWorld<D>::advance_scene_gpu(double t_new, double dt) {
 // Reductions run in two passes in a fixed order (reduce.comp): per-workgroup partials, then
 // one workgroup over them.
 template <int D>
-typename GpuWorld<D>::Extremes GpuWorld<D>::gpu_max_speed_and_acceleration() {
+void GpuWorld<D>::reduce(int mode, unsigned slot) const {
+  auto* self = const_cast<GpuWorld*>(this);  // scratch only: the state is not touched
   const std::size_t n = this->fluid_.size();
   const GLuint blocks = blocks_of(n);
-  partials_.reserve((1 + std::size_t(blocks)) * sizeof(DVec4));
+  self->partials_.reserve((1 + std::size_t(blocks)) * sizeof(DVec4));
   bind_all();
   partials_.bind(RTSPH_B_REDUCE);
-  reduce_[0].set("n", GLuint(n));
-  reduce_[0].dispatch_groups(blocks);
-  reduce_final_[0].set("n", blocks);
-  reduce_final_[0].set("slot", GLuint(kExtremes));
-  reduce_final_[0].dispatch_groups(1);
+  if (mode == 2) {
+    // The potential energy is gravity's alone, as on the CPU (not the scene's body force).
+    const Vec3d g = this->spec_.gravity;
+    const GLuint prog = reduce_[2].id();
+    glProgramUniform3f(prog, glGetUniformLocation(prog, "g_energy"), float(g[0]), float(g[1]),
+                       D == 3 ? float(g[2]) : 0.0f);
+  }
+  reduce_[mode].set("n", GLuint(n));
+  reduce_[mode].dispatch_groups(blocks);
+  reduce_final_[mode].set("n", blocks);
+  reduce_final_[mode].set("slot", GLuint(slot));
+  reduce_final_[mode].dispatch_groups(1);
+}
+
+template <int D>
+typename GpuWorld<D>::Extremes GpuWorld<D>::gpu_max_speed_and_acceleration() {
+  reduce(0, kExtremes);
   DVec4 r{};
   stats_.download(&r, sizeof r, kExtremes * sizeof(DVec4));
   return {r.x, r.y};
 }
 
 template <int D>
-void GpuWorld<D>::measure_density_error_gpu() {
-  const std::size_t n = this->fluid_.size();
-  const GLuint blocks = blocks_of(n);
-  partials_.reserve((1 + std::size_t(blocks)) * sizeof(DVec4));
-  bind_all();
-  partials_.bind(RTSPH_B_REDUCE);
-  reduce_[1].set("n", GLuint(n));
-  reduce_[1].dispatch_groups(blocks);
-  reduce_final_[1].set("n", blocks);
-  reduce_final_[1].set("slot", GLuint(kDensity));
-  reduce_final_[1].dispatch_groups(1);
-}
+void GpuWorld<D>::measure_density_error_gpu() { reduce(1, kDensity); }
 
 template <int D>
 void GpuWorld<D>::measure_energies(SimStats& s) const {
-  auto* self = const_cast<GpuWorld*>(this);
-  const std::size_t n = this->fluid_.size();
-  const GLuint blocks = blocks_of(n);
-  self->partials_.reserve((1 + std::size_t(blocks)) * sizeof(DVec4));
-  bind_all();
-  self->partials_.bind(RTSPH_B_REDUCE);
-  // The potential energy is gravity's alone, as on the CPU (not the scene's body force).
-  const Vec3d g = this->spec_.gravity;
-  const GLuint prog = reduce_[2].id();
-  glProgramUniform3f(prog, glGetUniformLocation(prog, "g_energy"), float(g[0]), float(g[1]),
-                     D == 3 ? float(g[2]) : 0.0f);
-  reduce_[2].set("n", GLuint(n));
-  reduce_[2].dispatch_groups(blocks);
-  reduce_final_[2].set("n", blocks);
-  reduce_final_[2].set("slot", GLuint(kEnergy));
-  reduce_final_[2].dispatch_groups(1);
+  reduce(2, kEnergy);
   DVec4 r{};
   stats_.download(&r, sizeof r, kEnergy * sizeof(DVec4));
   s.kinetic_energy_j = r.x;
@@ -402,11 +389,31 @@ void GpuWorld<D>::measure_energies(SimStats& s) const {
 }
 
 template <int D>
-std::optional<HealthFacts> GpuWorld<D>::health_facts() const {
-  if (loading_ || scalars_fresh_) {
-    // Nothing stepped since the host copies were made: they answer exactly.
-    return std::nullopt;
+std::optional<DeviceParticles> GpuWorld<D>::device_particles() const {
+  DeviceParticles d;
+  d.position = pos_.id();
+  d.velocity = vel_.id();
+  d.density = dens_.id();
+  d.count = this->fluid_.size();
+  d.dim = D;
+  if (d.count > 0) {
+    reduce(3, kRanges);
+    reduce(4, kRanges2);
+    DVec4 r[2]{};
+    stats_.download(r, sizeof r, kRanges * sizeof(DVec4));
+    d.max_speed = float(std::sqrt(r[0].x));
+    d.density_max = float(r[0].y);
+    d.density_min = float(-r[0].z);
+    d.pressure_max = float(r[0].w);
+    d.pressure_min = float(-r[1].x);
   }
+  return d;
+}
+
+template <int D>
+std::optional<HealthFacts> GpuWorld<D>::health_facts() const {
+  // Nothing stepped since the host copies were made: they answer exactly.
+  if (loading_ || scalars_fresh_) return std::nullopt;
   DVec4 r{};
   stats_.download(&r, sizeof r, kDensity * sizeof(DVec4));
   HealthFacts h;
@@ -454,6 +461,14 @@ void GpuWorld<D>::sync_host() const {
     f.rho[i] = d[i].x;
     f.p[i] = d[i].y;
   }
+  sync_boundary_host();
+  host_fresh_ = true;
+}
+
+template <int D>
+void GpuWorld<D>::sync_boundary_host() const {
+  if (boundary_fresh_ || loading_) return;
+  auto* self = const_cast<GpuWorld*>(this);
   auto& b = self->boundary_;
   auto& ctx = self->ctx_;
   const std::size_t nb = b.size();
@@ -475,7 +490,7 @@ void GpuWorld<D>::sync_host() const {
     ctx.wall_depth[i] = bv[i].w;
     b.owner[i] = std::int32_t(bn[i].w);
   }
-  host_fresh_ = true;
+  boundary_fresh_ = true;
 }
 
 template <int D>
@@ -486,7 +501,7 @@ ParticleView GpuWorld<D>::fluid() const {
 
 template <int D>
 BoundaryView GpuWorld<D>::boundary() const {
-  sync_host();
+  sync_boundary_host();  // the walls and obstacles alone: drawing needs no fluid read-back
   return FluidWorld<D>::boundary();
 }
 
@@ -528,7 +543,7 @@ void GpuWorld<D>::state_loaded() {
   stats_.upload(&density, sizeof density, kDensity * sizeof(DVec4));
   put_back_base_ = this->put_back_;
   put_back_counter_.fill_zero();
-  host_fresh_ = scalars_fresh_ = true;
+  host_fresh_ = scalars_fresh_ = boundary_fresh_ = true;
 }
 
 template <int D>

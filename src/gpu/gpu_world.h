@@ -29,6 +29,7 @@ class GpuWorld : public FluidWorld<D> {
   /// From the density pass's reduction (positions and velocities as they were before the step's
   /// last half kick; a NaN born in that kick is seen one step later).
   std::optional<HealthFacts> health_facts() const override;
+  std::optional<DeviceParticles> device_particles() const override;
   void prepare_state(std::size_t fluid_count) override;
   std::vector<StateField> state_fields() override;
   void state_loaded() override;
@@ -56,7 +57,7 @@ class GpuWorld : public FluidWorld<D> {
   void forces();                              // the acceleration sum (forces.comp)
   void kick(double dt);                       // v += a dt
   /// After a step: the host copies are stale until the next read.
-  void mark_stale() { host_fresh_ = false; scalars_fresh_ = false; }
+  void mark_stale() { host_fresh_ = scalars_fresh_ = boundary_fresh_ = false; }
   /// Binds every shared buffer to its layout.h binding (before a method's own passes too).
   void bind_all() const;
   const std::vector<std::string>& defines() const { return defines_; }
@@ -76,13 +77,16 @@ class GpuWorld : public FluidWorld<D> {
   /// Reads the particle arrays back into the FluidWorld host copies (logically const: the
   /// simulation's state does not change, only where a copy of it lives).
   void sync_host() const;
+  void sync_boundary_host() const;
   void sync_scalars() const;
   void measure_energies(SimStats& s) const override;
 
   std::vector<std::string> defines_;
   std::unique_ptr<CellSorter> sorter_;
   ComputeProgram density_, density_only_, boundary_pressure_, forces_, kick_, kick_drift_, move_boundary_;
-  ComputeProgram reduce_[3], reduce_final_[3];
+  ComputeProgram reduce_[5], reduce_final_[5];
+  /// Runs reduction `mode` of reduce.comp into stats slot `slot` (two passes, fixed order).
+  void reduce(int mode, unsigned slot) const;
   GLuint params_ubo_ = 0;
   Buffer bpos_, bvel_, bnormal_, blocal_, bpress_, bpos_alt_, bvel_alt_, bnormal_alt_, blocal_alt_;
   Buffer obstacles_buf_, partials_, stats_;
@@ -92,7 +96,7 @@ class GpuWorld : public FluidWorld<D> {
   std::uint64_t put_back_base_ = 0; // put-backs before the GPU counter was last zeroed
   bool boundary_sorted_ = false;
   bool loading_ = false;            // prepare_state() .. state_loaded(): host copies are the truth
-  mutable bool host_fresh_ = true, scalars_fresh_ = true;
+  mutable bool host_fresh_ = true, scalars_fresh_ = true, boundary_fresh_ = true;
 };
 
 }  // namespace rtsph::gpu

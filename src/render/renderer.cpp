@@ -164,6 +164,29 @@ void Renderer::upload(const ParticleView& f, const BoundaryView* b) {
     }
   }
 
+  upload_boundary(b);
+
+  if (!have_domain_ && n > 0) {
+    Vec3f lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(), 0};
+    Vec3f hi{std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest(), 0};
+    for (std::size_t i = 0; i < n; ++i) {
+      lo.x = std::min(lo.x, f.x[0][i]); hi.x = std::max(hi.x, f.x[0][i]);
+      lo.y = std::min(lo.y, f.x[1][i]); hi.y = std::max(hi.y, f.x[1][i]);
+    }
+    if (f.dim == 3 && f.x[2]) {
+      lo.z = std::numeric_limits<float>::max();
+      hi.z = std::numeric_limits<float>::lowest();
+      for (std::size_t i = 0; i < n; ++i) {
+        lo.z = std::min(lo.z, f.x[2][i]);
+        hi.z = std::max(hi.z, f.x[2][i]);
+      }
+    }
+    lo_ = lo;
+    hi_ = hi;
+  }
+}
+
+void Renderer::upload_boundary(const BoundaryView* b) {
   // Boundary: obstacles first, then walls, so each group is one contiguous instance range.
   obstacle_n_ = wall_n_ = 0;
   glBindVertexArray(boundary_vao_);
@@ -195,25 +218,6 @@ void Renderer::upload(const ParticleView& f, const BoundaryView* b) {
   for (GLuint i = nb > 0 ? 3 : 0; i < 8; ++i) glDisableVertexAttribArray(i);
   glBindVertexArray(0);
   glBindBuffer(GL_ARRAY_BUFFER, 0);
-
-  if (!have_domain_ && n > 0) {
-    Vec3f lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(), 0};
-    Vec3f hi{std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest(), 0};
-    for (std::size_t i = 0; i < n; ++i) {
-      lo.x = std::min(lo.x, f.x[0][i]); hi.x = std::max(hi.x, f.x[0][i]);
-      lo.y = std::min(lo.y, f.x[1][i]); hi.y = std::max(hi.y, f.x[1][i]);
-    }
-    if (f.dim == 3 && f.x[2]) {
-      lo.z = std::numeric_limits<float>::max();
-      hi.z = std::numeric_limits<float>::lowest();
-      for (std::size_t i = 0; i < n; ++i) {
-        lo.z = std::min(lo.z, f.x[2][i]);
-        hi.z = std::max(hi.z, f.x[2][i]);
-      }
-    }
-    lo_ = lo;
-    hi_ = hi;
-  }
 }
 
 std::pair<float, float> Renderer::data_range(ColorMode m) const {

@@ -57,6 +57,8 @@ class Renderer {
 
   /// Copies the arrays to the GPU and computes the value ranges. boundary may be null.
   void upload(const ParticleView& fluid, const BoundaryView* boundary);
+  /// The GPU backend's fluid, drawn straight from its buffers (no copy); boundary as upload().
+  void use_device(const DeviceParticles& fluid, const BoundaryView* boundary);
   /// The obstacle solids to draw (display modes other than Fluid), in their current poses.
   void upload_solids(const std::vector<SolidShape>& solids) { solids_.set(solids); }
   /// Draws into the bound framebuffer (viewport 0,0,w,h), clearing it first.
@@ -87,6 +89,7 @@ class Renderer {
     float lut;
   };
   void ensure_lut(ColorMap map);
+  void upload_boundary(const BoundaryView* boundary);
   void draw_lines(const std::vector<LineVertex>& v, GLenum mode, const Mat4& mvp);
   void draw_overlay(const std::vector<OverlayVertex>& v, int width, int height);
   void build_legend(int width, int height, const RenderSettings& s,

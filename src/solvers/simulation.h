@@ -101,6 +101,9 @@ class Simulation {
   /// sudden load can need more sweeps than allowed); the instability guard names it as the
   /// cause when the state then fails its checks.
   virtual std::string solver_failure() const { return {}; }
+  /// The GPU backend's buffers for drawing without a copy (valid until the next step); nullopt on
+  /// the CPU. Needs the simulation's OpenGL context current.
+  virtual std::optional<DeviceParticles> device_particles() const { return std::nullopt; }
   /// The guard's fast path: nullopt when the backend has nothing cheaper than fluid().
   virtual std::optional<HealthFacts> health_facts() const { return std::nullopt; }
   /// Applies parameters that are safe to change while running (viscosity, α, CFL, gravity…).

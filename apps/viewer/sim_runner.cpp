@@ -20,11 +20,31 @@ double now_s() {
 }
 }  // namespace
 
-SimRunner::SimRunner(const SimSpec& spec, int threads, bool start_paused)
-    : threads_(threads), sim_(make_simulation(spec, threads)), spec_(spec) {
+SimRunner::SimRunner(const SimSpec& spec, int threads, bool start_paused, SimFactory make,
+                     bool on_caller_thread)
+    : threads_(threads),
+      make_(make ? std::move(make) : SimFactory([](const SimSpec& s, int t) { return make_simulation(s, t); })),
+      inline_(on_caller_thread),
+      sim_(make_(spec, threads)),
+      spec_(spec) {
   paused_ = start_paused;
   publish(*sim_);
-  thread_ = std::thread([this] { loop(); });
+  wall_anchor_ = win_wall0_ = now_s();
+  sim_anchor_ = win_sim0_ = sim_->time();
+  if (!inline_) thread_ = std::thread([this] { loop(); });
+}
+
+void SimRunner::pump(double budget_s) {
+  if (!inline_) return;
+  const double start = now_s();
+  try {
+    while (!quit_ && tick() < 0 && now_s() - start < budget_s) {
+    }
+  } catch (const std::exception& e) {
+    std::lock_guard<std::mutex> lock(cmd_mutex_);
+    error_ = std::string("simulation stopped: ") + e.what();
+    paused_ = true;
+  }
 }
 
 SimRunner::~SimRunner() {
@@ -129,7 +149,13 @@ bool SimRunner::wait_for_frame(std::uint64_t serial, double timeout_s) {
 void SimRunner::publish(Simulation& sim) {
   // Copy outside the lock into the private staging frame, then swap it into the shared slot.
   const BoundaryView b = sim.boundary();
-  staging_.particles.copy_from(sim.fluid(), &b);
+  staging_.device = sim.device_particles();
+  if (staging_.device) {
+    // Zero copy: only the boundary goes into the snapshot (walls and obstacles are drawn from it).
+    staging_.particles.copy_from(ParticleView{.dim = b.dim}, &b);
+  } else {
+    staging_.particles.copy_from(sim.fluid(), &b);
+  }
   staging_.stats = sim.stats();
   last_dt_ = staging_.stats.dt_s;
   last_c0_ = staging_.stats.c0;
@@ -165,103 +191,100 @@ void SimRunner::loop() {
 }
 
 void SimRunner::run_loop() {
-  // Pacing anchors: simulated time may not exceed sim_anchor + (wall - wall_anchor).
-  double wall_anchor = now_s(), sim_anchor = sim_->time();
-  bool was_running = false;
-  win_wall0_ = wall_anchor;
-  win_sim0_ = sim_->time();
   while (!quit_) {
-    // Commands and resets from the UI thread.
-    std::deque<std::function<void(Simulation&)>> cmds;
-    std::unique_ptr<SimSpec> reset;
-    {
-      std::lock_guard<std::mutex> lock(cmd_mutex_);
-      cmds.swap(commands_);
-      reset.swap(reset_spec_);
-    }
-    if (reset) {
-      try {
-        auto fresh = make_simulation(*reset, threads_);
-        {
-          std::lock_guard<std::mutex> lock(cmd_mutex_);
-          spec_ = *reset;
-        }
-        sim_ = std::move(fresh);
-        ++generation_;
-        obstacle_goals_.clear();
-        busy_s_ = 0;
-        rtf_ = step_ms_ = 0;
-      } catch (const std::exception& e) {
-        std::lock_guard<std::mutex> lock(cmd_mutex_);
-        error_ = e.what();
-      }
-      resetting_ = false;
-      was_running = false;
-      publish(*sim_);
-      continue;
-    }
-    for (auto& c : cmds) c(*sim_);
-
-    if (pending_steps_ > 0) {
-      const double a = now_s();
-      step_once();
-      busy_s_ += now_s() - a;
-      --pending_steps_;
-      publish(*sim_);
-      was_running = false;
-      continue;
-    }
-    if (paused_) {
-      was_running = false;
-      std::unique_lock<std::mutex> lock(cmd_mutex_);
-      cv_.wait_for(lock, std::chrono::milliseconds(30));
-      continue;
-    }
-
-    const double wall = now_s();
-    if (!was_running) {
-      wall_anchor = wall;
-      sim_anchor = sim_->time();
-      win_wall0_ = wall;
-      win_sim0_ = sim_->time();
-      win_busy0_ = busy_s_;
-      win_steps0_ = sim_->step_count();
-      was_running = true;
-    }
-    double allowed = sim_anchor + (wall - wall_anchor);
-    if (allowed - sim_->time() > 0.1) {
-      // Behind real time: do not accumulate a backlog to catch up with later.
-      wall_anchor = wall;
-      sim_anchor = sim_->time();
-      allowed = sim_anchor;
-    }
-    if (sim_->time() >= allowed) {
-      std::unique_lock<std::mutex> lock(cmd_mutex_);
-      const double ahead = sim_->time() - allowed;
-      cv_.wait_for(lock, std::chrono::duration<double>(std::clamp(ahead, 0.001, 0.02)));
-      continue;
-    }
-    // A batch of steps: until real time is reached or ~1/60 s of work, then publish.
-    const double batch_start = now_s();
-    double t = batch_start;
-    do {
-      step_once();
-      const double e = now_s();
-      busy_s_ += e - t;
-      t = e;
-    } while (sim_->time() < allowed && t - batch_start < 1.0 / 60 && !quit_ && !resetting_ &&
-             pending_steps_ == 0 && !paused_);
-    if (t - win_wall0_ >= 1.0) {
-      const auto steps = sim_->step_count() - win_steps0_;
-      rtf_ = (sim_->time() - win_sim0_) / (t - win_wall0_);
-      step_ms_ = steps ? 1000 * (busy_s_ - win_busy0_) / double(steps) : 0;
-      win_wall0_ = t;
-      win_sim0_ = sim_->time();
-      win_busy0_ = busy_s_;
-      win_steps0_ = sim_->step_count();
-    }
-    publish(*sim_);
+    const double wait = tick();
+    if (wait < 0) continue;
+    std::unique_lock<std::mutex> lock(cmd_mutex_);
+    cv_.wait_for(lock, std::chrono::duration<double>(wait));
   }
+}
+
+double SimRunner::tick() {
+  // Commands and resets from the UI thread.
+  std::deque<std::function<void(Simulation&)>> cmds;
+  std::unique_ptr<SimSpec> reset;
+  {
+    std::lock_guard<std::mutex> lock(cmd_mutex_);
+    cmds.swap(commands_);
+    reset.swap(reset_spec_);
+  }
+  if (reset) {
+    try {
+      auto fresh = make_(*reset, threads_);
+      {
+        std::lock_guard<std::mutex> lock(cmd_mutex_);
+        spec_ = *reset;
+      }
+      sim_ = std::move(fresh);
+      ++generation_;
+      obstacle_goals_.clear();
+      busy_s_ = 0;
+      rtf_ = step_ms_ = 0;
+    } catch (const std::exception& e) {
+      std::lock_guard<std::mutex> lock(cmd_mutex_);
+      error_ = e.what();
+    }
+    resetting_ = false;
+    was_running_ = false;
+    publish(*sim_);
+    return -1;
+  }
+  for (auto& c : cmds) c(*sim_);
+
+  if (pending_steps_ > 0) {
+    const double a = now_s();
+    step_once();
+    busy_s_ += now_s() - a;
+    --pending_steps_;
+    publish(*sim_);
+    was_running_ = false;
+    return -1;
+  }
+  if (paused_) {
+    was_running_ = false;
+    return 0.03;
+  }
+
+  const double wall = now_s();
+  if (!was_running_) {
+    wall_anchor_ = wall;
+    sim_anchor_ = sim_->time();
+    win_wall0_ = wall;
+    win_sim0_ = sim_->time();
+    win_busy0_ = busy_s_;
+    win_steps0_ = sim_->step_count();
+    was_running_ = true;
+  }
+  double allowed = sim_anchor_ + (wall - wall_anchor_);
+  if (allowed - sim_->time() > 0.1) {
+    // Behind real time: do not accumulate a backlog to catch up with later.
+    wall_anchor_ = wall;
+    sim_anchor_ = sim_->time();
+    allowed = sim_anchor_;
+  }
+  if (sim_->time() >= allowed) return std::clamp(sim_->time() - allowed, 0.001, 0.02);
+  // A batch of steps: until real time is reached or ~1/60 s of work, then publish.
+  const double batch_start = now_s();
+  double t = batch_start;
+  do {
+    step_once();
+    sim_->wait_idle();  // a GPU step returns early; its cost belongs to this batch
+    const double e = now_s();
+    busy_s_ += e - t;
+    t = e;
+  } while (sim_->time() < allowed && t - batch_start < 1.0 / 60 && !quit_ && !resetting_ &&
+           pending_steps_ == 0 && !paused_);
+  if (t - win_wall0_ >= 1.0) {
+    const auto steps = sim_->step_count() - win_steps0_;
+    rtf_ = (sim_->time() - win_sim0_) / (t - win_wall0_);
+    step_ms_ = steps ? 1000 * (busy_s_ - win_busy0_) / double(steps) : 0;
+    win_wall0_ = t;
+    win_sim0_ = sim_->time();
+    win_busy0_ = busy_s_;
+    win_steps0_ = sim_->step_count();
+  }
+  publish(*sim_);
+  return -1;
 }
 
 }  // namespace rtsph::app

@@ -3,6 +3,10 @@
 // steps the particle arrays are copied into a snapshot and swapped into a shared slot under a
 // mutex (double buffering); the UI thread swaps it out when it draws. Pacing: simulated time
 // never runs ahead of real time; when the machine cannot keep up the real-time factor says so.
+//
+// The GPU backend runs on the caller's thread instead (on_caller_thread): its simulation lives
+// in the drawing thread's OpenGL context, the viewer calls pump() once per frame, which steps
+// for at most a frame's budget, and the frame carries the GPU's buffers instead of a copy.
 #include <atomic>
 #include <condition_variable>
 #include <cstdint>
@@ -10,6 +14,7 @@
 #include <functional>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <vector>
@@ -30,12 +35,17 @@ struct SimFrame {
   double step_ms = 0;           // mean wall ms per step over the same window
   std::uint64_t serial = 0;     // increases with every published frame
   std::uint64_t generation = 0; // increases with every reset
+  std::optional<DeviceParticles> device;  // GPU backend: draw from these, `particles` is empty
 };
+
+/// Builds a simulation for the runner (default: make_simulation, the CPU).
+using SimFactory = std::function<std::unique_ptr<Simulation>(const SimSpec&, int threads)>;
 
 class SimRunner {
  public:
   /// Builds the simulation on the calling thread (throws on a bad spec) and starts the thread.
-  SimRunner(const SimSpec& spec, int threads, bool start_paused);
+  SimRunner(const SimSpec& spec, int threads, bool start_paused, SimFactory make = {},
+            bool on_caller_thread = false);
   ~SimRunner();
   SimRunner(const SimRunner&) = delete;
   SimRunner& operator=(const SimRunner&) = delete;
@@ -61,16 +71,27 @@ class SimRunner {
   SimSpec spec() const;
   /// True while steps are pending or running (for scripts waiting on `step`).
   bool busy() const { return pending_steps_ > 0 || resetting_; }
+  /// on_caller_thread only: runs commands and steps for at most budget_s of wall time.
+  void pump(double budget_s);
+  bool on_caller_thread() const { return inline_; }
 
  private:
   void loop();
   void run_loop();
+  /// One pass of the solver loop: commands, a reset, a step or a batch of steps. Returns how
+  /// long to wait before the next pass (0 or more: paused or ahead of real time), or -1.
+  double tick();
   void publish(Simulation& sim);
   void step_once();  // one solver step, with obstacle goals applied
   std::vector<std::pair<bool, Vec3d>> obstacle_goals_;  // solver thread only
   double last_dt_ = 0, last_c0_ = 0;
 
   int threads_;
+  SimFactory make_;
+  bool inline_ = false;
+  // Pacing anchors: simulated time may not exceed sim_anchor_ + (wall - wall_anchor_).
+  double wall_anchor_ = 0, sim_anchor_ = 0;
+  bool was_running_ = false;
   std::unique_ptr<Simulation> sim_;
   SimSpec spec_;
   mutable std::mutex cmd_mutex_;

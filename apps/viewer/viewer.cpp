@@ -27,6 +27,7 @@
 #include "apps/viewer/scene_view.h"
 #include "apps/viewer/script.h"
 #include "apps/viewer/sim_runner.h"
+#include "apps/viewer/viewer_backend.h"
 #include "apps/viewer/view_settings.h"
 #include "render/gl_context.h"
 #include "render/image_io.h"
@@ -54,6 +55,7 @@ struct ViewOptions {
   bool report = false;
   bool accurate = false;   // run scenes as written, not their real-time profile
   float render_scale = 0;  // 0: adapt to keep ≥ 30 fps; else fixed fraction of the window
+  std::string backend;     // cpu, gpu, auto; empty: the scene's solver.backend, else auto
 };
 
 constexpr int kGlfwInitFailed = -100;  // run_default falls back to headless rendering
@@ -92,6 +94,7 @@ class Viewer {
   enum class WindowResult { Ok, InitFailed, WindowFailed };
   WindowResult create_window();
   void load(const SimSpec& spec, bool reframe);
+  void upload_frame();
   SimSpec for_viewer(const SimSpec& scene, const std::vector<std::string>& sets);
   void frame();
   void draw_ui();
@@ -116,6 +119,8 @@ class Viewer {
   }
 
   ViewOptions opt_;
+  ViewerBackend backend_;
+  std::string gl_renderer_;
   GLFWwindow* win_ = nullptr;
   std::unique_ptr<render::Renderer> renderer_;
   std::unique_ptr<SimRunner> runner_;
@@ -673,6 +678,7 @@ void Viewer::draw_ui() {
   const SimStats& st = frame_.stats;
   ImGui::Text("%s (%dD)   %s", spec_.name.c_str(), spec_.dimension,
               runner_->paused() ? "PAUSED" : "running");
+  ImGui::TextDisabled("%s backend, %s", backend_.name.c_str(), gl_renderer_.c_str());
   if (ImGui::Button(runner_->paused() ? "Run (Space)" : "Pause (Space)")) runner_->set_paused(!runner_->paused());
   ImGui::SameLine();
   if (ImGui::Button("Step (N)")) runner_->step(1);
@@ -813,8 +819,19 @@ void Viewer::draw_ui() {
   }
 }
 
+// The frame's particles to the renderer: the GPU backend's own buffers, or the CPU's snapshot.
+void Viewer::upload_frame() {
+  const BoundaryView b = frame_.particles.boundary();
+  if (frame_.device) renderer_->use_device(*frame_.device, &b);
+  else renderer_->upload(frame_.particles.fluid(), &b);
+  renderer_->upload_solids(frame_.obstacle_solids);
+}
+
 void Viewer::frame() {
   if (!script_.empty()) run_script_step();
+  // The GPU backend steps here, in this thread's context: at most about a 60th of a second per
+  // frame, so drawing keeps its rate whatever a step costs.
+  runner_->pump(1.0 / 60);
   if (std::string e = runner_->take_error(); !e.empty()) status(e, true);
 
   if (runner_->fetch(&frame_)) {
@@ -826,9 +843,7 @@ void Viewer::frame() {
       e_pot0_ = frame_.stats.potential_energy_j;
       obstacle_targets_.assign(frame_.obstacle_centers.size(), std::nullopt);
     }
-    const BoundaryView b = frame_.particles.boundary();
-    renderer_->upload(frame_.particles.fluid(), &b);
-    renderer_->upload_solids(frame_.obstacle_solids);
+    upload_frame();
     if (e_kin_.size() >= 4000) {
       // Keep the plot bounded: drop every other sample.
       for (auto* v : {&e_kin_, &e_pot_, &e_tot_}) {
@@ -959,19 +974,18 @@ int Viewer::run() {
   try {
     renderer_ = std::make_unique<render::Renderer>();
     builtins_ = builtin_scenes();
-    runner_ = std::make_unique<SimRunner>(spec, opt_.threads >= 0 ? opt_.threads : threads_, opt_.paused);
+    backend_ = choose_viewer_backend(opt_.backend, spec);
+    gl_renderer_ = render::gl_description();
+    runner_ = std::make_unique<SimRunner>(spec, opt_.threads >= 0 ? opt_.threads : threads_, opt_.paused,
+                                          backend_.make, backend_.on_caller_thread);
     load(spec, true);
     runner_->fetch(&frame_);
     generation_ = frame_.generation;
     e_pot0_ = frame_.stats.potential_energy_j;
-    {
-      const BoundaryView b = frame_.particles.boundary();
-      renderer_->upload(frame_.particles.fluid(), &b);
-      renderer_->upload_solids(frame_.obstacle_solids);
-    }
-    std::fprintf(stderr, "rtsph view: %s (%dD, %s), %zu fluid + %zu boundary particles, %s\n",
-                 spec.name.c_str(), spec.dimension, spec.method.c_str(), frame_.stats.fluid_particles,
-                 frame_.stats.boundary_particles, render::gl_description().c_str());
+    upload_frame();
+    std::fprintf(stderr, "rtsph view: %s (%dD, %s, %s backend), %zu fluid + %zu boundary particles, %s\n",
+                 spec.name.c_str(), spec.dimension, spec.method.c_str(), backend_.name.c_str(),
+                 frame_.stats.fluid_particles, frame_.stats.boundary_particles, render::gl_description().c_str());
     std::fprintf(stderr, "rtsph view: %s%s\n", profile_text_.c_str(),
                  realtime_ && spec.viewer_realtime ? "; --accurate runs the scene as written" : "");
     run_t0_ = fps_t0_ = now_s();
@@ -1045,6 +1059,9 @@ void add_view_command(CLI::App& app, int& exit_code) {
   cmd->add_option("scene", o->scene, "Scene file or built-in name (default dam_break_3d)");
   cmd->add_option("--set", o->sets, "Override a scene parameter, e.g. --set fluid.spacing=0.04");
   cmd->add_option("--threads", o->threads, "Solver threads (default: all cores but one)")->check(CLI::Range(0, 1024));
+  cmd->add_option("--backend", o->backend, "Where the solver runs: cpu, gpu or auto (the GPU on a hardware OpenGL "
+                                           "driver, the CPU on a software one); default: the scene's solver.backend")
+      ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   cmd->add_option("--size", o->size, "Window size WxH")->capture_default_str();
   cmd->add_option("--style", o->style, "surface (water surface; 2D: filled contour) or particles")->capture_default_str();
   cmd->add_option("--color", o->color, "solid, speed, velocity, pressure or density (particle style)")->capture_default_str();

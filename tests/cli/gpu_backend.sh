@@ -46,6 +46,16 @@ check grep -q "backend gpu" <<<"$out"
 check test $? -eq 0
 check test -s "$work/g.png"
 
+# The viewer on the GPU backend (under Xvfb when present): steps in the drawing thread's context
+# and draws from the GPU's buffers.
+if command -v xvfb-run >/dev/null; then
+  xvfb-run -a -s "-screen 0 1024x768x24" "$bin" view dam_break_2d "${small[@]}" --backend gpu --frames 20 \
+    --size 320x200 --report >"$work/v.out" 2>"$work/v.err"
+  check test $? -eq 0
+  check grep -q "gpu backend" "$work/v.err"
+  check grep -q "20 frames" "$work/v.out"
+fi
+
 # Refusals: one line, exit 2.
 for args in "--set solver.method=dfsph"; do
   "$bin" run dam_break_2d "${small[@]}" $args --backend gpu --steps 1 2>"$work/e" >/dev/null

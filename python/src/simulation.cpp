@@ -197,7 +197,7 @@ PySimulation::PySimulation(const PyScene& scene, int threads_, const std::string
     : max_density_error(kDefaultMaxDensityError) {
   if (threads_ < 0) throw std::invalid_argument(fmt::format("threads: expected 0 (all cores) or more, got {}", threads_));
   if (backend_ == "gpu")
-    throw std::invalid_argument("backend 'gpu': rtsph has no GPU backend yet; use 'cpu' (or 'auto')");
+    throw std::invalid_argument("backend 'gpu': the Python API runs on the CPU so far (the CLI has --backend gpu); use 'cpu' (or 'auto')");
   if (backend_ != "cpu" && backend_ != "auto")
     throw std::invalid_argument(fmt::format("backend '{}': expected cpu, gpu or auto", backend_));
   backend = "cpu";

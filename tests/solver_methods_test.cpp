@@ -240,6 +240,35 @@ TEST(Dfsph, HoldsItsDensityToleranceAndConverges) {
   EXPECT_LT(worst_tight, 2e-3);
 }
 
+// Issue 9 §7: in 3D, DFSPH holds its default tolerance at every step of a collapsing column: each
+// step's density solve brings the mean predicted density error ρ*/ρ0 − 1 (Bender & Koschier 2017,
+// Algorithm 3's criterion) to 0.1% within its iteration cap, else the step reports a failure.
+// The error measured after the drift is printed, not asserted: the first-order prediction
+// misses part of it (0.17% worst here, at the surge's impact on the far wall).
+TEST(Dfsph, HoldsTheDefaultToleranceAtEveryStepIn3D) {
+  SimSpec s = with_method(test::dam_break_2d(0.1, 0.01), "dfsph");
+  s.name = "dam_break_3d_dfsph";
+  s.dimension = 3;
+  s.domain_max = {{0.4, 0.25, 0.1}};
+  s.fluid_blocks = {{{{0, 0, 0}}, {{0.1, 0.2, 0.1}}, {}}};
+  auto sim = make_simulation(s, 2);
+  double worst = 0, worst_t = 0;
+  int max_it = 0;
+  while (sim->time() < 0.4 * scale()) {
+    sim->step();
+    const auto st = sim->stats();
+    if (st.mean_density_error > worst) { worst = st.mean_density_error; worst_t = st.time_s; }
+    max_it = std::max(max_it, st.pressure_iterations);
+    ASSERT_EQ(sim->solver_failure(), "");
+  }
+  std::printf("DFSPH 3D dam break, %zu particles, %llu steps to t = %.2f s: worst mean density error %.4f%% "
+              "(t = %.3f s), most iterations %d, mean %.1f\n", sim->stats().fluid_particles,
+              (unsigned long long)sim->step_count(), sim->time(), 100 * worst, worst_t, max_it,
+              sim->stats().mean_pressure_iterations);
+  EXPECT_LT(max_it, s.dfsph_max_iterations);
+  EXPECT_GT(worst, 0.0);  // a real measurement
+}
+
 // PBF reports the density error its constraint solve leaves, and more Jacobi iterations leave
 // less of it (the solve converges). The issue's goal of ≤ 1% at default settings is not met
 // yet (2.4% worst step here, docs/performance.md); this test records the figure.

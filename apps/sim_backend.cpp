@@ -4,7 +4,7 @@
 
 #include <stdexcept>
 
-#ifdef RTSPH_HAVE_VIEWER
+#ifdef RTSPH_HAVE_GPU
 #include "gpu/backend.h"
 #include "gpu/gl_compute.h"
 #include "render/gl_context.h"
@@ -18,7 +18,7 @@ std::string choose_backend(const std::string& flag, const SimSpec& spec, const s
   return command_default;
 }
 
-#ifdef RTSPH_HAVE_VIEWER
+#ifdef RTSPH_HAVE_GPU
 struct BackendSimulation::Gl {
   std::unique_ptr<render::HeadlessContext> context;
 };
@@ -39,7 +39,7 @@ BackendSimulation BackendSimulation::make(const SimSpec& spec, int threads, cons
     out.description_ = "cpu";
     return out;
   }
-#ifdef RTSPH_HAVE_VIEWER
+#ifdef RTSPH_HAVE_GPU
   std::string err;
   out.gl_ = std::make_unique<Gl>();
   out.gl_->context = render::HeadlessContext::create(&err);
@@ -58,6 +58,25 @@ BackendSimulation BackendSimulation::make(const SimSpec& spec, int threads, cons
   (void)threads;
   throw BackendUnavailable("--backend gpu: this rtsph was built without OpenGL (RTSPH_BUILD_VIEWER=OFF)");
 #endif
+}
+
+#ifdef RTSPH_HAVE_GPU
+void BackendSimulation::make_current() {
+  if (gl_ && gl_->context) gl_->context->make_current();
+}
+void BackendSimulation::release_current() {
+  if (gl_ && gl_->context) gl_->context->release();
+}
+#else
+void BackendSimulation::make_current() {}
+void BackendSimulation::release_current() {}
+#endif
+
+void BackendSimulation::reset() {
+  make_current();
+  sim_.reset();
+  release_current();
+  gl_.reset();
 }
 
 }  // namespace rtsph::app

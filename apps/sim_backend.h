@@ -33,6 +33,14 @@ class BackendSimulation {
   /// usable context or for a scene the GPU cannot run, throws BackendUnavailable with one line.
   static BackendSimulation make(const SimSpec& spec, int threads, const std::string& backend);
 
+  /// A GPU simulation is made with its context current on the calling thread. To use it from
+  /// another thread (the Python API's), release it here and make it current there; GL allows a
+  /// context to be current on one thread at a time. No-ops on the CPU backend.
+  void make_current();
+  void release_current();
+  /// Destroys the simulation (a GPU one with its context current, so its buffers are freed).
+  void reset();
+
  private:
   struct Gl;
   std::unique_ptr<Gl> gl_;  // declared before sim_: destroyed after it

@@ -256,10 +256,11 @@ class Simulation(_rtsph._Simulation):
 
     # -- files -----------------------------------------------------------------------------
     @classmethod
-    def from_checkpoint(cls, path: PathLike, threads: int = 0) -> "Simulation":
-        """Resumes a checkpoint written by save_checkpoint or ``rtsph run`` (bit-for-bit)."""
+    def from_checkpoint(cls, path: PathLike, threads: int = 0, backend: str = "cpu") -> "Simulation":
+        """Resumes a checkpoint written by save_checkpoint or ``rtsph run`` (bit-for-bit), on
+        either backend: the format is the same on the CPU and the GPU."""
         impl = _rtsph._checkpoint_scene(os.fspath(path))
-        sim = cls(Scene(impl), threads=threads)
+        sim = cls(Scene(impl), threads=threads, backend=backend)
         sim._read_checkpoint(os.fspath(path))
         return sim
 
@@ -270,7 +271,8 @@ class Simulation(_rtsph._Simulation):
 
     def __repr__(self) -> str:
         s = self.scene
-        return (f"<rtsph.Simulation {s.name!r} {s.dimension}D {s.method}, {self.particle_count} fluid particles, "
+        where = "" if self.backend == "cpu" else f" on the {self.backend}"
+        return (f"<rtsph.Simulation {s.name!r} {s.dimension}D {s.method}{where}, {self.particle_count} fluid particles, "
                 f"t = {self.time:.6g} s, step {self.step_count}>")
 
     def __enter__(self) -> "Simulation":

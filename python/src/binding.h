@@ -10,6 +10,7 @@
 #include <stdexcept>
 #include <string>
 
+#include "apps/sim_backend.h"
 #include "io/exporter.h"
 #include "solvers/simulation.h"
 #include "solvers/spec.h"
@@ -28,14 +29,31 @@ struct InstabilityError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
+/// The lock of a simulation. With the GPU backend it also makes the simulation's OpenGL context
+/// current on the locking thread and releases it on unlock, so any Python thread may use it.
+struct SimMutex {
+  std::mutex m;
+  app::BackendSimulation* sim = nullptr;
+  void lock() {
+    m.lock();
+    sim->make_current();
+  }
+  void unlock() {
+    sim->release_current();
+    m.unlock();
+  }
+};
+using Lock = std::lock_guard<SimMutex>;
+
 /// rtsph.Simulation. One mutex guards the engine: a step runs with the GIL released, so other
 /// Python threads (stepping their own simulations) run meanwhile, and a second thread touching
 /// the same simulation waits instead of racing. The mutex is never held while taking the GIL.
 struct PySimulation {
   PySimulation(const PyScene& scene, int threads, const std::string& backend);
+  ~PySimulation();
 
-  std::unique_ptr<Simulation> sim;
-  std::mutex mutex;
+  app::BackendSimulation sim;  // the engine, and on the GPU backend its headless GL context
+  SimMutex mutex{.sim = &sim};
   int threads = 0;              // resolved: 0 (all cores) is replaced by the count in use
   std::string backend = "cpu";
   double max_density_error = 0;  // the instability guard's bound (the CLI's default)

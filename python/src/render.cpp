@@ -42,22 +42,27 @@ Image render_frame(PySimulation& self, int width, int height, const std::string&
   nb::capsule owner(pixels, [](void* p) noexcept { delete static_cast<std::vector<unsigned char>*>(p); });
   {
     nb::gil_scoped_release release;
-    std::lock_guard<std::mutex> lock(self.mutex);
+    Lock lock(self.mutex);  // a GPU simulation's context is now current: draw from its buffers
     if (!self.sim) throw std::runtime_error("the simulation was closed");
-    // A context per call: cheap next to drawing on llvmpipe, and it keeps no GL state alive
-    // between calls or tied to one Python thread.
+    // A CPU simulation gets a context per call: cheap next to drawing on llvmpipe, and it keeps
+    // no GL state alive between calls or tied to one Python thread.
     std::string err;
-    auto ctx = render::HeadlessContext::create(&err);
-    if (!ctx) throw std::runtime_error("render: " + err);
+    std::unique_ptr<render::HeadlessContext> ctx;
+    if (self.backend != "gpu") {
+      ctx = render::HeadlessContext::create(&err);
+      if (!ctx) throw std::runtime_error("render: " + err);
+    }
     const SimSpec& spec = self.sim->spec();
     render::Renderer renderer;
     app::setup_scene_view(spec, renderer, settings);
     render::Camera cam;
     app::frame_scene(spec, cam, float(width) / float(height));
     render::OffscreenTarget target(width, height);
-    const ParticleView fluid = self.sim->fluid();
     const BoundaryView boundary = self.sim->boundary();
-    renderer.upload(fluid, &boundary);
+    if (const auto device = self.sim->device_particles())
+      renderer.use_device(*device, &boundary);
+    else
+      renderer.upload(self.sim->fluid(), &boundary);
     renderer.upload_solids(app::obstacle_solids(*self.sim));
     target.bind();
     renderer.draw(cam, width, height, settings);

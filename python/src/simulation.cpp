@@ -24,7 +24,6 @@
 namespace rtsph::py {
 namespace {
 
-using Lock = std::lock_guard<std::mutex>;
 using FloatArray = nb::ndarray<nb::numpy, float>;
 
 PySimulation& checked(PySimulation& s) {
@@ -196,14 +195,28 @@ std::string export_frame(PySimulation& self, const std::string& dir, const std::
 PySimulation::PySimulation(const PyScene& scene, int threads_, const std::string& backend_)
     : max_density_error(kDefaultMaxDensityError) {
   if (threads_ < 0) throw std::invalid_argument(fmt::format("threads: expected 0 (all cores) or more, got {}", threads_));
-  if (backend_ == "gpu")
-    throw std::invalid_argument("backend 'gpu': the Python API runs on the CPU so far (the CLI has --backend gpu); use 'cpu' (or 'auto')");
-  if (backend_ != "cpu" && backend_ != "auto")
+  if (backend_ != "cpu" && backend_ != "auto" && backend_ != "gpu")
     throw std::invalid_argument(fmt::format("backend '{}': expected cpu, gpu or auto", backend_));
-  backend = "cpu";
+  // auto is the CPU here, as for `rtsph run`: scripts are batch runs.
+  backend = backend_ == "gpu" ? "gpu" : "cpu";
   threads = threads_ > 0 ? threads_ : omp_get_max_threads();
   nb::gil_scoped_release release;  // building the scene samples every particle
-  sim = make_simulation(scene.spec, threads);
+  try {
+    sim = app::BackendSimulation::make(scene.spec, threads, backend);
+  } catch (const app::BackendUnavailable& e) {
+    // The CLI's line, worded for the keyword argument.
+    std::string why = e.what();
+    if (why.starts_with("--backend gpu")) why.replace(0, 13, "backend 'gpu'");
+    throw std::invalid_argument(why);
+  }
+  // The lock makes a GPU simulation's context current on whichever thread takes it.
+  sim.release_current();
+}
+
+PySimulation::~PySimulation() {
+  // The GPU simulation's buffers belong to its context: free them with it current.
+  std::lock_guard<std::mutex> lock(mutex.m);
+  sim.reset();
 }
 
 void bind_simulation(nb::module_& m) {
@@ -290,7 +303,7 @@ void bind_simulation(nb::module_& m) {
              io::read_checkpoint(path, *s.sim, app::scene_hash(s.sim->spec()));
            })
       .def("_export", &export_frame, nb::arg("dir"), nb::arg("format"), nb::arg("attributes"))
-      .def("close", [](PySimulation& s) { Lock l(s.mutex); s.sim.reset(); s.exporters.clear(); },
+      .def("close", [](PySimulation& s) { std::lock_guard<std::mutex> l(s.mutex.m); s.sim.reset(); s.exporters.clear(); },
            "Frees the engine's memory now; the object is unusable afterwards.");
 
   m.def("_checkpoint_scene", [](const std::string& path) {

@@ -161,4 +161,8 @@ void HeadlessContext::make_current() {
                  static_cast<EGLContext>(context_));
 }
 
+void HeadlessContext::release() {
+  eglMakeCurrent(static_cast<EGLDisplay>(display_), EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+}
+
 }  // namespace rtsph::render

@@ -18,6 +18,8 @@ class HeadlessContext {
   HeadlessContext& operator=(const HeadlessContext&) = delete;
 
   void make_current();
+  /// Makes no context current on this thread (so that another thread may make this one current).
+  void release();
   /// e.g. "EGL surfaceless, OpenGL 4.5 (Core Profile) Mesa 23.2.1, llvmpipe (LLVM 15.0.7, 256 bits)".
   const std::string& description() const { return description_; }
 

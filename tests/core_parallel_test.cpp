@@ -3,12 +3,14 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
 #include <limits>
 #include <memory>
 #include <mutex>
+#include <thread>
 #include <vector>
 
 #include "core/parallel.h"
@@ -62,6 +64,34 @@ TEST(ParallelFor, LargeRangeWithTwoThreadsSumsCorrectly) {
     sum += s;
   });
   EXPECT_EQ(sum.load(), (std::size_t(1) << 16) * ((std::size_t(1) << 16) - 1) / 2);
+}
+
+// Workers spin between loops and sleep after a while: thousands of back-to-back loops of
+// changing width (a loop asking for fewer threads than the pool has), with pauses long enough
+// for the workers to fall asleep, must each run every block once and return.
+TEST(ParallelFor, ManyLoopsInARowWithChangingWidths) {
+  const ThreadPool pool(3);
+  for (int round = 0; round < 3000; ++round) {
+    const std::size_t n = std::size_t(1 + round % 5) * 600;  // 1 to 3 threads at grain 512
+    std::atomic<std::size_t> sum{0};
+    pool.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      std::size_t s = 0;
+      for (std::size_t i = b; i < e; ++i) s += i;
+      sum += s;
+    }, 512);
+    ASSERT_EQ(sum.load(), n * (n - 1) / 2) << "round " << round;
+    if (round % 1000 == 999) std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  }
+}
+
+// A loop started inside a loop's body runs on the calling thread and still covers its range.
+TEST(ParallelFor, NestedLoopRunsOnItsCaller) {
+  const ThreadPool pool(2);
+  std::atomic<std::size_t> inner{0};
+  pool.parallel_for(4096, [&](std::size_t b, std::size_t e) {
+    pool.parallel_for(e - b, [&](std::size_t ib, std::size_t ie) { inner += ie - ib; }, 1);
+  }, 512);
+  EXPECT_EQ(inner.load(), 4096u);
 }
 
 double term(std::size_t i) { return std::sin(double(i) * 0.37) / double(i + 1) + 1e-3 * double(i % 7); }

@@ -4,21 +4,33 @@
 // so results are bitwise identical for any thread count.
 #include <algorithm>
 #include <cstddef>
+#include <memory>
 #include <type_traits>
 #include <vector>
 
 namespace rtsph {
 
+namespace detail {
+class Workers;
+}
+
+/// Owns threads-1 worker threads (the caller is the last one), started with the pool and joined
+/// when it is destroyed, so two simulations never share workers.
 class ThreadPool {
  public:
   explicit ThreadPool(int threads);  // 0 = all hardware threads
+  ~ThreadPool();
+  ThreadPool(const ThreadPool&) = delete;
+  ThreadPool& operator=(const ThreadPool&) = delete;
   int threads() const { return threads_; }
 
-  // Waking a sleeping worker costs about 65 µs here (passive waits, under a hypervisor: a 2D
-  // WCSPH step of ~10 regions at 990 particles took 0.75 ms on 2 threads against 0.1 ms on 1),
-  // so a loop only gets as many threads as it has `grain` elements per thread. Element-wise
-  // loops (a few ns per element) keep the default; pair sums (0.3–1 µs per particle) pass
-  // kPairs. The thread count never changes results, so neither does the grain.
+  // Waking a sleeping worker costs about 65 µs here (futex wake under a hypervisor: a 2D
+  // WCSPH step of ~10 regions at 990 particles took 0.75 ms on 2 threads against 0.1 ms on 1).
+  // Workers therefore spin briefly after each loop before they sleep (detail::kSpin), which
+  // catches the next loop of the same step, and a loop only gets as many threads as it has
+  // `grain` elements per thread. Element-wise loops (a few ns per element) keep the default;
+  // pair sums (0.3–1 µs per particle) pass kPairs. The thread count never changes results, so
+  // neither does the grain.
   static constexpr std::size_t kCheap = 32768;
   static constexpr std::size_t kPairs = 512;
 
@@ -36,6 +48,7 @@ class ThreadPool {
     return int(std::min<std::size_t>(std::size_t(threads_), std::max<std::size_t>(1, n / std::max<std::size_t>(grain, 1))));
   }
   int threads_;
+  std::unique_ptr<detail::Workers> workers_;  // null with one thread
 };
 
 /// Reduction value that combines by maximum, for parallel_reduce.
@@ -46,7 +59,11 @@ struct MaxOf {
 };
 
 namespace detail {
-void run_blocks(int threads, std::size_t blocks, void* ctx, void (*call)(void*, std::size_t));
+/// Runs call(ctx, b) for every b in [0, blocks) on up to `threads` threads (the caller and
+/// threads-1 of `workers`), each block exactly once; returns when all are done. Blocks are
+/// handed out dynamically, which never changes results: what a block computes is fixed.
+void run_blocks(Workers* workers, int threads, std::size_t blocks, void* ctx,
+                void (*call)(void*, std::size_t));
 }
 
 template <class Fn>
@@ -57,7 +74,7 @@ void ThreadPool::parallel_for(std::size_t n, Fn&& fn, std::size_t grain) const {
   // A few blocks per thread balances uneven neighbour counts; the split never changes results.
   const std::size_t blocks = std::min<std::size_t>(n, static_cast<std::size_t>(threads) * 8);
   struct Ctx { std::remove_reference_t<Fn>* fn; std::size_t n, blocks; } ctx{&fn, n, blocks};
-  detail::run_blocks(threads, blocks, &ctx, [](void* p, std::size_t b) {
+  detail::run_blocks(workers_.get(), threads, blocks, &ctx, [](void* p, std::size_t b) {
     auto& c = *static_cast<Ctx*>(p);
     const std::size_t lo = c.n * b / c.blocks, hi = c.n * (b + 1) / c.blocks;
     if (lo < hi) (*c.fn)(lo, hi);
@@ -72,7 +89,7 @@ T ThreadPool::parallel_reduce(std::size_t n, T zero, Fn&& fn, std::size_t grain)
   const std::size_t blocks = std::min<std::size_t>(kBlocks, n);
   if (blocks == 0) return zero;
   struct Ctx { std::remove_reference_t<Fn>* fn; T* out; std::size_t n, blocks; } ctx{&fn, partial, n, blocks};
-  detail::run_blocks(threads_for(n, grain), blocks, &ctx, [](void* p, std::size_t b) {
+  detail::run_blocks(workers_.get(), threads_for(n, grain), blocks, &ctx, [](void* p, std::size_t b) {
     auto& c = *static_cast<Ctx*>(p);
     c.out[b] = (*c.fn)(c.n * b / c.blocks, c.n * (b + 1) / c.blocks);
   });

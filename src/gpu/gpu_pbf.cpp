@@ -91,7 +91,6 @@ template <int D>
 void GpuPbf<D>::solve_density_constraint(double) {
   const SimSpec& s = this->spec_;
   const std::size_t n = this->fluid_.size();
-  iterations_ = std::max(1, s.pbf_iterations);
   lambda_buf_.fill_zero();  // Σλ starts at 0
   lambda_.set("eps", Real(s.pbf_relaxation * lattice_gradient_norm_));
   lambda_.set("omega_relax", Real(s.clamp_negative_pressure ? 1.0 : kTwoSidedRelax));
@@ -100,7 +99,13 @@ void GpuPbf<D>::solve_density_constraint(double) {
   correct_.set("inv_w_dq", Real(1.0 / double(w_dq)));
   correct_.set("k_corr", Real(s.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30)));
   correct_.set("n_corr", GLint(s.pbf_scorr_n));
-  for (int it = 0; it < iterations_; ++it) {
+  // The CPU's loop (solvers/pbf.cpp): past solver.pbf.iterations while the mean compression the
+  // last λ pass measured is above solver.pbf.max_density_error. Each check reads 8 bytes back.
+  const int least = std::max(1, s.pbf_iterations);
+  const int most = std::max(least, s.pbf_max_iterations);
+  const double tolerance = s.pbf_max_density_error;
+  iterations_ = 0;
+  for (;;) {
     {
       ScopedTimer timer(this->times_.density_s);
       this->bind_all();
@@ -108,14 +113,23 @@ void GpuPbf<D>::solve_density_constraint(double) {
       wgrad_.bind(RTSPH_B_WGRAD);
       lambda_.dispatch(n);
     }
-    ScopedTimer timer(this->times_.forces_s);
-    this->bind_all();
-    lambda_buf_.bind(RTSPH_B_LAMBDA);
-    wgrad_.bind(RTSPH_B_WGRAD);
-    this->pos_alt_.bind(RTSPH_B_POS_NEXT);
-    correct_.dispatch(n);
-    this->pos_.swap(this->pos_alt_);  // Jacobi: all move at once
+    ++iterations_;
+    const bool check = tolerance > 0 && iterations_ >= least && iterations_ < most;
+    const double error = check ? this->mean_compression_now() : 0.0;
+    {
+      ScopedTimer timer(this->times_.forces_s);
+      this->bind_all();
+      lambda_buf_.bind(RTSPH_B_LAMBDA);
+      wgrad_.bind(RTSPH_B_WGRAD);
+      this->pos_alt_.bind(RTSPH_B_POS_NEXT);
+      correct_.dispatch(n);
+      this->pos_.swap(this->pos_alt_);  // Jacobi: all move at once
+    }
+    if (iterations_ >= most) break;
+    if (iterations_ >= least && (tolerance <= 0 || error <= tolerance)) break;
   }
+  iteration_sum_ += iterations_;
+  ++solves_;
 }
 
 template <int D>
@@ -155,7 +169,7 @@ void GpuPbf<D>::xsph_and_vorticity(double dt) {
 template <int D>
 void GpuPbf<D>::add_method_stats(SimStats& s) const {
   s.pressure_iterations = iterations_;
-  s.mean_pressure_iterations = iterations_;
+  s.mean_pressure_iterations = solves_ ? iteration_sum_ / double(solves_) : iterations_;
 }
 
 template class GpuPbf<2>;

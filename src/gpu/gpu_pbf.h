@@ -20,7 +20,9 @@ class GpuPbf final : public GpuWorld<D> {
   ComputeProgram external_, copy_, lambda_, correct_, velocity_, xsph_, vorticity_, apply_;
   Buffer pred_, lambda_buf_, wgrad_, delta_, omega_;
   double lattice_gradient_norm_ = 0;  // Σⱼ|∇ⱼCᵢ|² inside the rest lattice (1/m²)
-  int iterations_ = 0;
+  int iterations_ = 0;             // of the last substep
+  double iteration_sum_ = 0;       // over the substeps this object solved (not a resumed run's)
+  std::uint64_t solves_ = 0;
 };
 
 }  // namespace rtsph::gpu

@@ -15,7 +15,7 @@ using glsl::SphParams;
 using glsl::vec4;
 
 // Slots of the stats buffer (reduce.comp writes them).
-enum StatSlot : GLuint { kExtremes = 0, kDensity = 1, kEnergy = 2, kRanges = 3, kRanges2 = 4, kSlots = 5 };
+enum StatSlot : GLuint { kExtremes = 0, kDensity = 1, kEnergy = 2, kRanges = 3, kRanges2 = 4, kSolve = 5, kSlots = 6 };
 struct alignas(32) DVec4 { double x, y, z, w; };
 
 GLuint blocks_of(std::size_t n) { return GLuint((n + RTSPH_WG - 1) / RTSPH_WG); }
@@ -377,6 +377,15 @@ typename GpuWorld<D>::Extremes GpuWorld<D>::gpu_max_speed_and_acceleration() {
 
 template <int D>
 void GpuWorld<D>::measure_density_error_gpu() { reduce(1, kDensity); }
+
+template <int D>
+double GpuWorld<D>::mean_compression_now() {
+  reduce(1, kSolve);
+  DVec4 r{};
+  stats_.download(&r, sizeof r, kSolve * sizeof(DVec4));
+  const std::size_t n = this->fluid_.size();
+  return n ? r.y / double(n) : 0.0;
+}
 
 template <int D>
 void GpuWorld<D>::measure_energies(SimStats& s) const {

@@ -53,6 +53,9 @@ class GpuWorld : public FluidWorld<D> {
   void density_and_pressure();                // ρ, p, p/ρ², 1/ρ (density.comp)
   void density_only();                        // ρ alone (FluidWorld::compute_density)
   void measure_density_error_gpu();           // max and mean compression, on the GPU
+  /// The mean compression of the densities now in the buffer, read back (8 bytes): PBF's
+  /// stopping check. Its own stats slot, so the step's reported figures stay the final ones.
+  double mean_compression_now();
   void boundary_pressure();                   // Adami 2012's wall pressure
   void forces();                              // the acceleration sum (forces.comp)
   void kick(double dt);                       // v += a dt

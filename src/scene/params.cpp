@@ -164,8 +164,23 @@ const std::vector<ParamInfo>& parameter_table() {
       field<&SimSpec::pbf_iterations>({.key = "solver.pbf.iterations", .min = 1, .max = 100,
                                        .default_value = 4,
                                        .help = "Jacobi iterations of the density constraint per "
-                                               "substep.",
+                                               "substep (at least: see "
+                                               "solver.pbf.max_density_error).",
                                        .live = true}),
+      field<&SimSpec::pbf_max_density_error>({.key = "solver.pbf.max_density_error", .min = 0,
+                                              .max = 0.1, .default_value = 0.01,
+                                              .help = "PBF iterates past solver.pbf.iterations "
+                                                      "while the mean compression (ρ-ρ0)/ρ0 "
+                                                      "its last iteration measured is above "
+                                                      "this (0.01 = 1%); 0 = exactly "
+                                                      "solver.pbf.iterations.",
+                                              .live = true}),
+      field<&SimSpec::pbf_max_iterations>({.key = "solver.pbf.max_iterations", .min = 1,
+                                           .max = 1000, .default_value = 20,
+                                           .help = "Cap on PBF's Jacobi iterations per substep "
+                                                   "(reached: the substep ends with the error "
+                                                   "it has; iterations are reported).",
+                                           .live = true}),
       field<&SimSpec::pbf_cfl>({.key = "solver.pbf.cfl", .min = 0, .max = 10, .default_value = 1,
                                 .help = "PBF substeps shrink so no particle moves more than "
                                         "cfl·spacing in one; 0 = never.",

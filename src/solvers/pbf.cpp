@@ -95,17 +95,36 @@ void Pbf<D>::save_predicted_positions() {
   std::fill(lambda_sum_.begin(), lambda_sum_.begin() + n, Real(0));
 }
 
+// Jacobi iterations of the density constraint: at least solver.pbf.iterations, then on while the
+// mean compression that the last λ pass measured (before its correction) is above
+// solver.pbf.max_density_error, up to solver.pbf.max_iterations. A fixed count leaves a deep
+// column compressed by several percent (2.4% at 40 layers, 4 iterations); the check costs
+// nothing, as the λ pass sums the density anyway. Checking the density after the last correction
+// would take one more λ pass per substep (about a tenth of a step); the correction lowers the
+// error it was computed from, so what the step reports stays close to the tolerance (measured:
+// 1.03% worst step for 1%, tests/solver_methods_test.cpp).
 template <int D>
 void Pbf<D>::solve_density_constraint(double dt) {
-  iterations_ = std::max(1, spec_.pbf_iterations);
-  for (int it = 0; it < iterations_; ++it) {
+  const int least = std::max(1, spec_.pbf_iterations);
+  const int most = std::max(least, spec_.pbf_max_iterations);
+  const double tolerance = spec_.pbf_max_density_error;
+  iterations_ = 0;
+  for (;;) {
+    double error;
     {
       ScopedTimer timer(times_.density_s);
-      compute_lambda();
+      error = compute_lambda();
     }
-    ScopedTimer timer(times_.forces_s);
-    apply_position_correction();
+    {
+      ScopedTimer timer(times_.forces_s);
+      apply_position_correction();
+    }
+    ++iterations_;
+    if (iterations_ >= most) break;
+    if (iterations_ >= least && (tolerance <= 0 || error <= tolerance)) break;
   }
+  iteration_sum_ += iterations_;
+  ++solves_;
   // Equivalent pressure: Δxᵢ = Δt² aᵢ with aᵢ = −Σⱼ m(pᵢ/ρᵢ² + pⱼ/ρⱼ²)∇Wᵢⱼ gives
   // pᵢ = −ρᵢ² Σλᵢ / (ρ0 Δt²), summed over the iterations. Reported, never used.
   const double scale = -1.0 / (prm_.rho0 * dt * dt);
@@ -116,9 +135,10 @@ void Pbf<D>::solve_density_constraint(double dt) {
   });
 }
 
-// ρᵢ, Cᵢ and λᵢ in one pair loop (eqs. 2, 1, 11), caching what the Δx pass needs.
+// ρᵢ, Cᵢ and λᵢ in one pair loop (eqs. 2, 1, 11), caching what the Δx pass needs. Returns the
+// mean of max(0, ρᵢ/ρ0 − 1), summed in fixed blocks so it is the same for any thread count.
 template <int D>
-void Pbf<D>::compute_lambda() {
+double Pbf<D>::compute_lambda() {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
   const double inv_rho0 = 1.0 / prm_.rho0, inv_rho02 = inv_rho0 * inv_rho0;
@@ -145,9 +165,10 @@ void Pbf<D>::compute_lambda() {
   Real* rho = fluid_.rho.data();
   Real* lambda = lambda_.data();
   Real* lambda_sum = lambda_sum_.data();
-  with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
+  const double compression = with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     const Real inv_w_dq = Real(1.0 / double(K.value(float(dq * dq))));
-    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    return pool_.parallel_reduce(n, 0.0, [&](std::size_t b, std::size_t e) {
+      double block_compression = 0;
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
@@ -185,14 +206,17 @@ void Pbf<D>::compute_lambda() {
         }
         const double grad2 = (dot + double(mass) * mass * simd::hsum(sq)) * inv_rho02;
         double C = r * inv_rho0 - 1.0;
+        block_compression += std::max(C, 0.0);
         if (clamp) C = std::max(C, 0.0);
         const double l = -omega * C / (grad2 + eps);
         rho[i] = Real(r);
         lambda[i] = Real(l);
         lambda_sum[i] += Real(l);
       }
+      return block_compression;
     }, ThreadPool::kPairs);
   });
+  return n ? compression / double(n) : 0.0;
 }
 
 // Δxᵢ (eq. 14) with the artificial pressure s_corr = −k (W(r)/W(Δq))ⁿ (eq. 13), then x += Δx.
@@ -254,7 +278,7 @@ void Pbf<D>::update_velocity(double dt) {
 template <int D>
 void Pbf<D>::add_method_stats(SimStats& s) const {
   s.pressure_iterations = iterations_;
-  s.mean_pressure_iterations = iterations_;
+  s.mean_pressure_iterations = solves_ ? iteration_sum_ / double(solves_) : iterations_;
 }
 
 template class Pbf<2>;

@@ -19,7 +19,7 @@ class Pbf final : public FluidWorld<D> {
   double choose_time_step() const;
   void save_predicted_positions();
   void solve_density_constraint(double dt);  // λᵢ, then Δxᵢ (eqs. 11-14), Jacobi
-  void compute_lambda();
+  double compute_lambda();                   // returns the mean compression it measured
   void apply_position_correction();
   void update_velocity(double dt);           // vᵢ = (x*ᵢ − xᵢ)/Δt (Algorithm 1, line 21)
   void xsph_and_vorticity(double dt);        // eqs. 15-17, and ρ at the corrected positions
@@ -35,7 +35,9 @@ class Pbf final : public FluidWorld<D> {
   // gradient Σ_b Ψ_b∇W_ib. The Δx pass then evaluates no kernel and walks no wall.
   std::array<AlignedArray<Real>, D> pair_grad_, wall_grad_;
   AlignedArray<Real> pair_scorr_;
-  int iterations_ = 0;
+  int iterations_ = 0;             // of the last substep
+  double iteration_sum_ = 0;       // over the substeps this object solved (not a resumed run's)
+  std::uint64_t solves_ = 0;
 };
 
 }  // namespace rtsph

@@ -82,7 +82,9 @@ struct SimSpec {
   // PBF, position based fluids (Macklin & Müller 2013)
   double pbf_time_step = 1.0 / 60; // s, frame step, split into pbf_substeps
   int pbf_substeps = 4;            // 2 lets a 2 m deep column collapse (measured)
-  int pbf_iterations = 4;          // Jacobi iterations of the density constraint per substep
+  int pbf_iterations = 4;          // Jacobi iterations of the density constraint per substep (at least)
+  double pbf_max_density_error = 0.01;  // more iterations while the mean compression is above (0 = off)
+  int pbf_max_iterations = 20;     // cap on those
   double pbf_cfl = 1.0;            // substeps shrink so no particle moves more than cfl·spacing
   double pbf_relaxation = 0.01;    // ε, relative to a full neighbourhood's Σ|∇C|²
   double pbf_scorr_k = 0.1;        // artificial pressure s_corr = -k (W(r)/W(Δq))^n
@@ -122,6 +124,8 @@ inline void copy_live_parameters(const SimSpec& from, SimSpec& to) {
   to.pbf_time_step = from.pbf_time_step;
   to.pbf_substeps = from.pbf_substeps;
   to.pbf_iterations = from.pbf_iterations;
+  to.pbf_max_density_error = from.pbf_max_density_error;
+  to.pbf_max_iterations = from.pbf_max_iterations;
   to.pbf_cfl = from.pbf_cfl;
   to.pbf_relaxation = from.pbf_relaxation;
   to.pbf_scorr_k = from.pbf_scorr_k;

@@ -1,20 +1,10 @@
 // rtsph: one executable, one subcommand per task. Each command lives in its own file.
-#include <unistd.h>
-
 #include <cstdio>
-#include <cstdlib>
 #include <exception>
 
 #include "apps/commands.h"
 
 int main(int argc, char** argv) {
-  // OpenMP workers that spin at barriers stall whenever another process holds a core (a 2-thread
-  // run beside a busy process measured 10.2 s spinning vs 0.46 s sleeping; on an idle machine
-  // the two are within noise). libgomp reads the policy once at load, so set it and re-exec.
-  if (!std::getenv("OMP_WAIT_POLICY")) {
-    setenv("OMP_WAIT_POLICY", "passive", 1);
-    execv("/proc/self/exe", argv);  // if this fails, carry on with the spinning default
-  }
 #ifdef RTSPH_HAVE_VIEWER
   if (argc == 1) return rtsph::app::run_default(argc, argv);
 #endif

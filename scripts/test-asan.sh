@@ -11,8 +11,6 @@
 #   steps; tests/run_checkpoint_test.cpp does). The physics validations run in full: about
 #   50 s (hydrostatic) and 25 s (dam break) under ASan on 2 cores; the whole suite about 6 min
 #   (cli_render_smoke alone 200 s: llvmpipe under ASan) after a first build of ~25 min.
-# - OMP_WAIT_POLICY=passive: spinning OpenMP workers and ASan slow each other down badly when
-#   cores are shared.
 # - RTSPH_ASAN_EXCLUDE: a ctest regex of tests to skip (default: none).
 # Extra arguments go to ctest.
 # Usage: scripts/test-asan.sh [ctest args...]
@@ -20,7 +18,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh asan-ubsan
 export RTSPH_SANITIZER=1
-export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 exclude="${RTSPH_ASAN_EXCLUDE:-}"
 # Each test uses both cores already; tests in parallel only compete (see scripts/test.sh).
 if [ -n "$exclude" ]; then

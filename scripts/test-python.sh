@@ -10,7 +10,6 @@ venv=build/pytest-venv
 rm -rf "$venv"
 scripts/setup-python.sh "$venv"
 export RTSPH_BINARY="${RTSPH_BINARY:-$PWD/build/release/rtsph}"
-export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 # From another directory, so `import rtsph` finds the installed package, not python/rtsph.
 cd "$(mktemp -d)"
 set +e

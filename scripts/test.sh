@@ -6,9 +6,6 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh release
-# Worker threads sleep instead of spinning at barriers, so a test never waits on a spinning
-# thread that the scheduler parked (measured up to 37x slower steps under load).
-export OMP_WAIT_POLICY="${OMP_WAIT_POLICY:-passive}"
 ctest --preset release -j1 "$@"
 # The Python package, installed into a fresh virtual environment and tested with pytest.
 [ "${RTSPH_SKIP_PYTHON:-0}" = 1 ] || scripts/test-python.sh

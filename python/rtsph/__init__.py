@@ -16,11 +16,6 @@ import sys
 import time as _time
 from typing import Any, Callable, Dict, Mapping, Optional, Sequence, Tuple, Union
 
-# OpenMP workers that spin at barriers stall whenever another process holds a core (measured
-# 10x-37x slower steps on a shared 2-core machine). libgomp reads the policy once, when the
-# extension loads it, so it must be set before the import below; an explicit setting wins.
-os.environ.setdefault("OMP_WAIT_POLICY", "passive")
-
 import numpy as np  # noqa: E402
 
 from . import _rtsph  # noqa: E402

@@ -64,18 +64,21 @@ class Workers {
     call_ = call;
     blocks_ = blocks;
     next_.store(0, std::memory_order_relaxed);
-    pending_.store(helpers, std::memory_order_relaxed);
-    // A new generation with its helper count in one word: a worker that does not take part
-    // reads nothing else, so it never races with the fields of the next loop.
+    gate_.store(0, std::memory_order_release);  // open, nobody in: publishes the fields above
+    // A new generation with its helper count in one word, so a worker that is not asked reads
+    // nothing else.
     const uint64_t next_generation = (job_.load(std::memory_order_relaxed) | (kGeneration - 1)) + 1;
-    job_.store(next_generation | uint64_t(helpers), std::memory_order_release);  // publishes the job
+    job_.store(next_generation | uint64_t(helpers), std::memory_order_release);
     wake(job_cv_);
     take_blocks();
-    // Every helper checks in, even one that found no block left: the job lives on this stack.
-    auto all_done = [&] { return pending_.load(std::memory_order_acquire) == 0; };
-    if (!spin_until(all_done)) {
-      std::unique_lock<std::mutex> lock(mutex_);
-      done_cv_.wait(lock, all_done);
+    // Close the gate, then wait only for the workers that got in: one still asleep (or parked by
+    // the scheduler) when the blocks ran out is not waited for, it finds the gate closed.
+    if ((gate_.fetch_or(kClosed, std::memory_order_acq_rel) & ~kClosed) != 0) {
+      auto all_out = [&] { return (gate_.load(std::memory_order_acquire) & ~kClosed) == 0; };
+      if (!spin_until(all_out)) {
+        std::unique_lock<std::mutex> lock(mutex_);
+        done_cv_.wait(lock, all_out);
+      }
     }
     busy_.store(false, std::memory_order_release);
   }
@@ -106,16 +109,25 @@ class Workers {
       seen = job_.load(std::memory_order_acquire);
       if (stop_.load(std::memory_order_relaxed)) return;
       if (uint64_t(w) >= (seen & (kGeneration - 1))) continue;  // this loop asked for fewer threads
+      if (!enter()) continue;  // the caller already ran every block
       take_blocks();
-      if (pending_.fetch_sub(1, std::memory_order_acq_rel) == 1) wake(done_cv_);
+      if (gate_.fetch_sub(1, std::memory_order_acq_rel) == (kClosed | 1)) wake(done_cv_);
     }
+  }
+  // Joins the open loop (whichever it is: the fields are read only after this acquire).
+  bool enter() {
+    uint32_t g = gate_.load(std::memory_order_relaxed);
+    while (!(g & kClosed))
+      if (gate_.compare_exchange_weak(g, g + 1, std::memory_order_acquire, std::memory_order_relaxed)) return true;
+    return false;
   }
 
   static constexpr uint64_t kGeneration = uint64_t(1) << 32;  // the low bits count helpers
 
   std::vector<std::thread> threads_;
   std::atomic<uint64_t> job_{0};          // generation (high bits) and helper count (low bits)
-  std::atomic<int> pending_{0};          // helpers of the current loop not yet done
+  static constexpr uint32_t kClosed = 0x80000000u;
+  std::atomic<uint32_t> gate_{kClosed};   // kClosed once the caller is done, + workers inside
   std::atomic<std::size_t> next_{0};     // the next block to hand out
   std::atomic<bool> busy_{false};
   std::mutex mutex_;  // only for sleeping

@@ -6,6 +6,7 @@
 
 #include "solvers/geometry.h"
 #include "solvers/dfsph.h"
+#include "solvers/gas.h"
 #include "solvers/pbf.h"
 #include "solvers/wcsph.h"
 
@@ -21,10 +22,11 @@ template <template <int> class S, int D>
 std::unique_ptr<Simulation> make(const SimSpec& s, int threads) {
   return std::make_unique<S<D>>(s, threads);
 }
-constexpr std::array<SolverEntry, 3> kSolvers{{
+constexpr std::array<SolverEntry, 4> kSolvers{{
     {"wcsph", &make<Wcsph, 2>, &make<Wcsph, 3>},
     {"pbf", &make<Pbf, 2>, &make<Pbf, 3>},
     {"dfsph", &make<Dfsph, 2>, &make<Dfsph, 3>},
+    {"gas", &make<Gas, 2>, &make<Gas, 3>},
 }};
 }  // namespace
 

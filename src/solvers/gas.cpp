@@ -28,6 +28,11 @@ Gas<D>::Gas(const SimSpec& spec, int threads) : W(spec, threads) {
     this->add_method_field({.name = f == &h_ ? "h" : f == &u_ ? "u" : f == &dudt_ ? "dudt"
                                            : f == &signal_ ? "signal" : "phi",
                             .array = f});
+  // Only within a step (predictor to corrector): sorted with the fluid, never saved.
+  static const char* const kPrev[3] = {"a_prev.x", "a_prev.y", "a_prev.z"};
+  for (int k = 0; k < D; ++k)
+    this->add_method_field({.name = kPrev[k], .array = &a_prev_[k], .sorted = true, .saved = false});
+  this->add_method_field({.name = "dudt_prev", .array = &dudt_prev_, .sorted = true, .saved = false});
   std::fill(h_.begin(), h_.end(), Real(spec.gas_eta * spec.spacing));
   update_forces();
   if (spec.gas_eos == GasEos::Adiabatic) {  // u from the polytrope's K at the first density
@@ -39,22 +44,27 @@ Gas<D>::Gas(const SimSpec& spec, int threads) : W(spec, threads) {
   this->reset_stage_times();
 }
 
-// Kick-drift-kick leapfrog (velocity Verlet), as WCSPH; u is kicked with v.
+// Kick-drift-kick leapfrog (velocity Verlet), as WCSPH; u is kicked with v. The viscosity and
+// du/dt depend on the velocity, which at the force evaluation is known only at t + dt/2: they
+// are evaluated at the predicted v* = v(t+dt/2) + a(t) dt/2 (and u* likewise), and the last
+// kick replaces the predicted half kick by the real one (as Phantom does; Price et al. 2018,
+// eqs. 202-205). Without the predictor the energy error is first order in dt (measured: 1.3%
+// over 10 dynamical times at C = 0.3, halving with dt).
 template <int D>
 void Gas<D>::step() {
   const double dt = choose_time_step();  // Courant with hᵢ and the acceleration condition
   {
     ScopedTimer timer(this->times_.integrate_s);
-    this->kick(0.5 * dt);
+    this->kick(0.5 * dt);                         // v(t+dt/2)
     kick_energy(0.5 * dt);
-    this->drift(dt);
+    this->drift(dt);                              // x(t+dt)
     this->advance_scene(this->time_ + dt, dt);
+    predict(0.5 * dt);                            // v* = v(t+dt/2) + a(t) dt/2
   }
-  update_forces();
+  update_forces();                                // a(t+dt) from x(t+dt), v*
   {
     ScopedTimer timer(this->times_.integrate_s);
-    this->kick(0.5 * dt);
-    kick_energy(0.5 * dt);
+    correct(0.5 * dt);                            // v(t+dt) = v* − a(t) dt/2 + a(t+dt) dt/2
   }
   this->time_ += dt;
   this->dt_ = dt;
@@ -183,6 +193,39 @@ void Gas<D>::add_external() {
     for (int k = 0; k < D; ++k)
       for (std::size_t i = b; i < e; ++i)
         f.a[k][i] += Real(g[k]) - lambda * f.x[k][i] - nu * f.v[k][i];
+  });
+}
+
+template <int D>
+void Gas<D>::predict(double half_dt) {
+  const Real hdt = Real(half_dt);
+  const bool adiabatic = this->spec_.gas_eos == GasEos::Adiabatic;
+  auto& f = this->fluid_;
+  this->pool_.parallel_for(f.size(), [&](std::size_t b, std::size_t e) {
+    for (int k = 0; k < D; ++k)
+      for (std::size_t i = b; i < e; ++i) {
+        a_prev_[k][i] = f.a[k][i];
+        f.v[k][i] += f.a[k][i] * hdt;
+      }
+    if (adiabatic)
+      for (std::size_t i = b; i < e; ++i) {
+        dudt_prev_[i] = dudt_[i];
+        u_[i] = std::max(Real(0), u_[i] + dudt_[i] * hdt);
+      }
+  });
+}
+
+template <int D>
+void Gas<D>::correct(double half_dt) {
+  const Real hdt = Real(half_dt);
+  const bool adiabatic = this->spec_.gas_eos == GasEos::Adiabatic;
+  auto& f = this->fluid_;
+  this->pool_.parallel_for(f.size(), [&](std::size_t b, std::size_t e) {
+    for (int k = 0; k < D; ++k)
+      for (std::size_t i = b; i < e; ++i) f.v[k][i] += (f.a[k][i] - a_prev_[k][i]) * hdt;
+    if (adiabatic)
+      for (std::size_t i = b; i < e; ++i)
+        u_[i] = std::max(Real(0), u_[i] + (dudt_[i] - dudt_prev_[i]) * hdt);
   });
 }
 

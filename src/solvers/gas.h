@@ -31,6 +31,8 @@ class Gas final : public FluidWorld<D> {
   void add_self_gravity();           // kernel-softened gravity, direct or tree
   void add_external();               // uniform gravity, the spring, damping
   void kick_energy(double dt);       // u += du/dt dt (adiabatic)
+  void predict(double half_dt);      // v* = v + a dt/2 (u* likewise), keeping a and du/dt
+  void correct(double half_dt);      // v += (a_new − a_kept) dt/2
   double choose_time_step() const;
   double specific_energy(std::size_t i) const;  // uᵢ (J/kg)
 
@@ -40,6 +42,7 @@ class Gas final : public FluidWorld<D> {
   AlignedArray<Real> dudt_;    // W/kg
   AlignedArray<Real> signal_;  // m/s, signal speed for the Courant condition
   AlignedArray<Real> phi_;     // J/kg, gravitational potential (for the energy)
+  AlignedArray<Real> a_prev_[D], dudt_prev_;  // a(t), du/dt(t) during a step
   // Scratch, recomputed after each sort.
   AlignedArray<Real> omega_, zeta_, p_term_, a_coef_, cs_, mass_, gacc_[D];
   GravityTree tree_;

@@ -81,7 +81,9 @@ void Gas<D>::update_forces() {
       for (std::size_t i = b; i < e; ++i) m.value = std::max(m.value, h_[i]);
       return m;
     }).value;
-    const Real cell = this->follow_fluid(Real(2 * kCellMargin) * std::max(hmax, Real(1e-30)));
+    // New particles (an emitter's) start from h = η·spacing, so the cell must hold that too.
+    const Real h_new = Real(this->spec_.gas_eta * this->spec_.spacing);
+    const Real cell = this->follow_fluid(Real(2 * kCellMargin) * std::max(hmax, h_new));
     this->update_neighbours();
     for (auto* a : {&omega_, &zeta_, &p_term_, &a_coef_, &cs_, &mass_}) a->resize(n);
     for (auto& a : gacc_) a.resize(n);

@@ -105,8 +105,10 @@ const std::vector<ParamInfo>& parameter_table() {
                                .choices = solver_methods(),
                                .help = "Solver method: wcsph (weakly compressible, small explicit steps), "
                                        "pbf (position based fluids: large fixed steps, for "
-                                       "real time) or dfsph (divergence-free SPH: implicit, "
-                                       "large steps, accurate)."}),
+                                       "real time), dfsph (divergence-free SPH: implicit, "
+                                       "large steps, accurate) or gas (compressible, "
+                                       "self-gravitating gas with adaptive smoothing lengths: "
+                                       "stars; solver.gas.*)."}),
       field<&SimSpec::backend>({.key = "solver.backend", .default_text = "auto",
                                 .choices = {"auto", "cpu", "gpu"},
                                 .help = "Where the solver runs: cpu, gpu (OpenGL 4.3 compute; "

@@ -33,18 +33,15 @@ void run_until(Simulation& sim, double t) {
 }
 
 struct Cloud {
-  double mass = 0;
   double com[3] = {0, 0, 0};
 };
 
-Cloud measure(const Simulation& sim) {
+Cloud measure(const Simulation& sim) {  // equal masses: the centre of mass is the mean position
   const ParticleView f = sim.fluid();
-  const double m = sim.stats().fluid_particles ? 1.0 : 0.0;  // equal masses: the mean is the com
   Cloud c;
   for (std::size_t i = 0; i < f.count; ++i)
     for (int k = 0; k < f.dim; ++k) c.com[k] += f.x[k][i];
   for (int k = 0; k < f.dim; ++k) c.com[k] /= double(f.count);
-  c.mass = m;
   return c;
 }
 
@@ -80,14 +77,24 @@ double profile_error(const Simulation& sim, double r_max, double bin, double rho
   return worst;
 }
 
-double total_mass(const Simulation& sim) {
-  // Equal masses; the kinetic energy over ½Σv² recovers m without a mass accessor.
+// With RTSPH_GAS_CSV_DIR set, writes every particle's radius and density (for the plots in
+// docs/validation/, made by scripts/plot_gas_profiles.py).
+void write_profile_csv(const Simulation& sim, const std::string& name) {
+  const char* dir = std::getenv("RTSPH_GAS_CSV_DIR");
+  if (!dir || !*dir) return;
   const ParticleView f = sim.fluid();
-  double v2 = 0;
-  for (std::size_t i = 0; i < f.count; ++i)
-    for (int k = 0; k < f.dim; ++k) v2 += double(f.v[k][i]) * f.v[k][i];
-  return 2 * sim.stats().kinetic_energy_j / v2 * double(f.count);
+  const Cloud c = measure(sim);
+  std::FILE* out = std::fopen((std::string(dir) + "/" + name + ".csv").c_str(), "w");
+  if (!out) return;
+  std::fprintf(out, "r,rho\n");
+  for (std::size_t i = 0; i < f.count; ++i) {
+    double r2 = 0;
+    for (int k = 0; k < f.dim; ++k) r2 += (f.x[k][i] - c.com[k]) * (f.x[k][i] - c.com[k]);
+    std::fprintf(out, "%.6g,%.6g\n", std::sqrt(r2), double(f.density[i]));
+  }
+  std::fclose(out);
 }
+
 
 // Toy star, 2D, γ = 2 (Monaghan & Price 2004 in one dimension; the same algebra in two):
 // dv/dt = −∇p/ρ − λx with p = Kρ² has the static solution ρ(r) = (λ/4K)(R² − r²), and the mass
@@ -115,6 +122,7 @@ TEST(Gas, ToyStarSettlesOnItsStaticProfile) {
   const double err = profile_error(*sim, 0.8 * star.R, 0.05 * star.R, star.rho_c,
                                    [&](double r) { return star.rho(r); }, true);
   std::printf("toy star 2D: worst profile error inside 0.8 R: %.2f%% of rho_c\n", 100 * err);
+  write_profile_csv(*sim, "toy_star_2d");
   EXPECT_LT(err, 0.05);
 }
 
@@ -224,6 +232,7 @@ TEST(Gas, PolytropeRelaxesToLaneEmden) {
                 "E = %.5f (%llu steps)\n", sim->time(), 100 * err, st.kinetic_energy_j,
                 st.kinetic_energy_j + st.potential_energy_j, (unsigned long long)st.steps);
     if (std::abs(t - s.end_time) < 1e-9 && scale() == 1.0) EXPECT_LT(err, 0.05);
+    if (std::abs(t - s.end_time) < 1e-9) write_profile_csv(*sim, "polytrope_star_3d");
   }
   EXPECT_FALSE(check_health(*sim).has_value());
 }

@@ -127,6 +127,23 @@ TEST(Gas, ToyStarSettlesOnItsStaticProfile) {
 }
 
 
+// The reference's own choice (Gingold & Monaghan 1977): one global h from the particles'
+// spread, with the Gaussian kernel, and no grad-h terms. The same static profile.
+TEST(Gas, ToyStarWithTheGlobalSmoothingLengthOfGingoldAndMonaghan) {
+  SimSpec s = load_scene("toy_star_2d");
+  s.gas_smoothing = GasSmoothing::Global;
+  auto sim = make_simulation(s, 2);
+  run_until(*sim, s.end_time);
+  ASSERT_FALSE(check_health(*sim).has_value());
+  const double M = s.rest_density * s.spacing * s.spacing * double(sim->fluid().count);
+  const ToyStar star(s, M);
+  const double err = profile_error(*sim, 0.8 * star.R, 0.05 * star.R, star.rho_c,
+                                   [&](double r) { return star.rho(r); }, true);
+  std::printf("toy star 2D, global h = %.4f (b = %g, Gaussian): worst profile error inside "
+              "0.8 R: %.2f%% of rho_c\n", sim->stats().h, s.gas_global_b, 100 * err);
+  EXPECT_LT(err, 0.05);
+}
+
 // Linear velocity fields v = A(t)(x, σy) keep the toy star's density a quadratic (Monaghan &
 // Price 2004, whose 1D algebra carries over): with ρ = H − C₁x² − C₂y², p = Kρ², continuity and
 // momentum give Ċ₁ = −(3A₁ + A₂)C₁, Ȧ₁ = 4KC₁ − λ − A₁² (and x ↔ y). Linearised about

@@ -83,6 +83,7 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
                           "solver.pbf.xsph", "solver.pbf.vorticity",
                           "solver.dfsph.max_density_error", "solver.dfsph.max_divergence_error",
                           "solver.dfsph.max_iterations", "domain.open", "solver.gas.eta",
+                          "solver.gas.smoothing", "solver.gas.global_b",
                           "solver.gas.eos", "solver.gas.polytropic_k", "solver.gas.gamma",
                           "solver.gas.damping", "solver.gas.spring", "solver.gas.self_gravity",
                           "gravitational_constant", "solver.gas.gravity_solver",

@@ -221,6 +221,17 @@ const std::vector<ParamInfo>& parameter_table() {
                                              .help = "Iteration cap of each DFSPH solve; hitting "
                                                      "it stops the run (instability guard).",
                                              .live = true}),
+      field<&SimSpec::gas_smoothing>({.key = "solver.gas.smoothing", .default_text = "adaptive",
+                                      .choices = {"adaptive", "global"},
+                                      .help = "Gas: adaptive hᵢ = η (mᵢ/ρᵢ)^(1/d) with the cubic "
+                                              "spline and grad-h terms (Price 2012), or global: "
+                                              "one h = b (⟨|x|²⟩ − |⟨x⟩|²)^½ for all particles "
+                                              "with the Gaussian kernel (Gingold & Monaghan "
+                                              "1977, eq. 4)."}),
+      field<&SimSpec::gas_global_b>({.key = "solver.gas.global_b", .min = 0, .max = 10,
+                                     .min_exclusive = true, .default_value = 0.1,
+                                     .help = "Gas, global smoothing: b of h = b (⟨|x|²⟩ − "
+                                             "|⟨x⟩|²)^½, the particles' positional spread."}),
       field<&SimSpec::gas_eta>({.key = "solver.gas.eta", .min = 0.5, .max = 3, .default_value = 1.2,
                                 .help = "Gas: adaptive smoothing length hᵢ = η (mᵢ/ρᵢ)^(1/d), "
                                         "solved with the density by Newton–Raphson (Price 2012). "

@@ -83,13 +83,19 @@ void Gas<D>::update_forces() {
     }).value;
     // New particles (an emitter's) start from h = η·spacing, so the cell must hold that too.
     const Real h_new = Real(this->spec_.gas_eta * this->spec_.spacing);
-    const Real cell = this->follow_fluid(Real(2 * kCellMargin) * std::max(hmax, h_new));
+    const bool global = this->spec_.gas_smoothing == GasSmoothing::Global;
+    const double hg = global ? global_h() : 0.0;
+    const Real cell = this->follow_fluid(global ? Real(support_ratio(KernelType::Gaussian) * hg)
+                                                : Real(2 * kCellMargin) * std::max(hmax, h_new));
     this->update_neighbours();
     for (auto* a : {&omega_, &zeta_, &p_term_, &a_coef_, &cs_, &mass_}) a->resize(n);
     for (auto& a : gacc_) a.resize(n);
     std::fill(mass_.begin(), mass_.end(), Real(this->prm_.mass));
     ScopedTimer density(this->times_.density_s);
-    solve_density(Real(0.5) * cell);
+    if (global)
+      global_density(hg);
+    else
+      solve_density(Real(0.5) * cell);
     compute_pressure();
   }
   ScopedTimer timer(this->times_.forces_s);
@@ -151,6 +157,63 @@ void Gas<D>::solve_density(Real hcap) {
       rho[i] = Real(sum_w);
       omega_[i] = Real(1.0 - dh_drho * sum_dw);
       zeta_[i] = Real(dh_drho * sum_dphi);
+    }
+  }, ThreadPool::kPairs);
+}
+
+// h = b (⟨|x|²⟩ − |⟨x⟩|²)^½: the particles' positional spread (Gingold & Monaghan 1977, eq. 4,
+// with r the position vector, so h does not depend on where the origin is). Tiny clouds
+// (one particle) fall back to η·spacing.
+template <int D>
+double Gas<D>::global_h() const {
+  struct Moments {
+    double s[D + 1] = {};
+    Moments& operator+=(const Moments& o) {
+      for (int k = 0; k <= D; ++k) s[k] += o.s[k];
+      return *this;
+    }
+  };
+  const auto& f = this->fluid_;
+  const std::size_t n = f.size();
+  const Moments m = this->pool_.parallel_reduce(n, Moments{}, [&](std::size_t b, std::size_t e) {
+    Moments r;
+    for (std::size_t i = b; i < e; ++i)
+      for (int k = 0; k < D; ++k) {
+        r.s[k] += f.x[k][i];
+        r.s[D] += double(f.x[k][i]) * f.x[k][i];
+      }
+    return r;
+  });
+  double var = n ? m.s[D] / double(n) : 0.0;
+  for (int k = 0; k < D; ++k) var -= n ? (m.s[k] / double(n)) * (m.s[k] / double(n)) : 0.0;
+  const double h = this->spec_.gas_global_b * std::sqrt(std::max(var, 0.0));
+  return h > 0 ? h : this->spec_.gas_eta * this->spec_.spacing;
+}
+
+template <int D>
+void Gas<D>::global_density(double h) {
+  const std::size_t n = this->fluid_.size();
+  const Real m = Real(this->prm_.mass);
+  const Gaussian<D> K(h);
+  const Real support2 = Real(9 * h * h);
+  const auto& grid = this->ctx_.fluid_grid;
+  const uint32_t* cells = grid.sorted_cells();
+  const Real* xs[D];
+  for (int k = 0; k < D; ++k) xs[k] = this->fluid_.x[k].data();
+  Real* rho = this->fluid_.rho.data();
+  this->pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) {
+      Real xi[D];
+      for (int k = 0; k < D; ++k) xi[k] = xs[k][i];
+      f8 w{};
+      for_each_candidate_batch<D, false>(grid, cells[i], xs, xi, support2,
+                                         [&](auto, const f8*, f8 r2, i8 mask) {
+        w += simd::select(mask, K.value(r2), f8{});
+      });
+      rho[i] = m * simd::hsum(w);
+      h_[i] = Real(h);
+      omega_[i] = 1;  // h depends on no single particle's density: no grad-h terms (G&M 1977)
+      zeta_[i] = 0;
     }
   }, ThreadPool::kPairs);
 }
@@ -290,6 +353,17 @@ void Gas<D>::measure_energies(SimStats& st) const {
   st.thermal_energy_j = e.thermal;
   st.gravitational_energy_j = e.grav;
   st.potential_energy_j += e.thermal + e.grav + e.spring;
+}
+
+template <int D>
+void Gas<D>::add_method_stats(SimStats& st) const {
+  double hmin = 0, cmax = 0;
+  for (std::size_t i = 0; i < this->fluid_.size(); ++i) {
+    hmin = i == 0 ? double(h_[i]) : std::min(hmin, double(h_[i]));
+    if (i < cs_.size()) cmax = std::max(cmax, double(cs_[i]));
+  }
+  st.h = hmin;
+  st.c0 = cmax;
 }
 
 template class Gas<2>;

@@ -20,12 +20,17 @@ class Gas final : public FluidWorld<D> {
 
  protected:
   void measure_energies(SimStats& s) const override;
+  void add_method_stats(SimStats& s) const override;  // h: the smallest hᵢ; c0: the largest cᵢ
   bool sort_after_edit() const override { return false; }  // the step sorts before any pair sum
 
  private:
   using W = FluidWorld<D>;
   void update_forces();     // sort → ρ, h, Ω → p → hydro + gravity + external accelerations
   void solve_density(Real hcap);     // ρᵢ, hᵢ, Ωᵢ, ζᵢ by Newton–Raphson, per particle
+  double global_h() const;           // Gingold & Monaghan 1977, eq. 4
+  void global_density(double h);     // ρᵢ with the Gaussian of one h; Ω = 1, ζ = 0
+  template <class Grad>
+  void hydro_sum(const Grad& grad);  // the pair loop of hydro_accelerations, per kernel
   void compute_pressure();
   void hydro_accelerations();        // pressure, grad-h, viscosity, gravitational grad-h; du/dt
   void add_self_gravity();           // kernel-softened gravity, direct or tree

@@ -22,6 +22,18 @@ using simd::i8;
 // themselves beyond it. The grid's cells are at least 2 max(h), so the stencil holds them all.
 template <int D>
 void Gas<D>::hydro_accelerations() {
+  if (this->spec_.gas_smoothing == GasSmoothing::Global) {
+    // One h for all: the Gaussian of Gingold & Monaghan 1977 (both gradients are the same).
+    const Gaussian<D> K(this->fluid_.size() ? double(h_[0]) : 1.0);
+    hydro_sum([&](f8, f8 r2, f8) { return K.grad_factor(r2); });
+  } else {
+    hydro_sum([](f8 r, f8, f8 inv_h) { return gas::grad_factor<D>(r * inv_h, inv_h); });
+  }
+}
+
+template <int D>
+template <class Grad>
+void Gas<D>::hydro_sum(const Grad& grad) {
   const std::size_t n = this->fluid_.size();
   const auto& grid = this->ctx_.fluid_grid;
   const uint32_t* cells = grid.sorted_cells();
@@ -50,8 +62,8 @@ void Gas<D>::hydro_accelerations() {
         const f8 hj_raw = simd::at(h, j);  // lanes past the end read the zero padding
         const f8 hj = simd::select(hj_raw > 0.0f, hj_raw, f8{} + 1.0f);
         const f8 r = simd::sqrt(r2);
-        const f8 Gi = gas::grad_factor<D>(r * inv_hi, inv_hi);
-        const f8 Gj = gas::grad_factor<D>(r / hj, 1.0f / hj);
+        const f8 Gi = grad(r, r2, inv_hi);
+        const f8 Gj = grad(r, r2, 1.0f / hj);
         f8 vr{};
         f8 vij[D];
         for (int k = 0; k < D; ++k) {

@@ -17,6 +17,7 @@ enum class ObstacleShape { Box, Sphere };  // 2D: "rectangle" and "circle" map t
 enum class MotionKind { Static, Velocity, Path };
 enum class BlockShape { Box, Ball };  // 2D: "rectangle" and "circle"
 enum class GasEos { Polytropic, Adiabatic };
+enum class GasSmoothing { Adaptive, Global };
 enum class GravitySolver { Direct, Tree };
 /// Periodic axes as a bit set (x = 1, y = 2, z = 4), spelled "none", "x", "y", "xy", … in JSON.
 enum class PeriodicAxes { None, X, Y, XY, Z, XZ, YZ, XYZ };
@@ -102,7 +103,9 @@ struct SimSpec {
   int dfsph_max_iterations = 100;
 
   // Gas, self-gravitating SPH with adaptive smoothing lengths (method "gas"; docs/self-gravity.md)
+  GasSmoothing gas_smoothing = GasSmoothing::Adaptive;
   double gas_eta = 1.2;            // hᵢ = η (mᵢ/ρᵢ)^(1/d)  (Price 2012, eq. 10)
+  double gas_global_b = 0.1;       // global h = b (⟨|x|²⟩ − |⟨x⟩|²)^½  (Gingold & Monaghan 1977)
   GasEos gas_eos = GasEos::Polytropic;
   double gas_k = 1.0;              // polytropic constant K in p = K ρ^γ (SI: Pa·(m³/kg)^γ)
   double gas_gamma = 2.0;          // γ of the polytrope or the adiabatic ideal gas

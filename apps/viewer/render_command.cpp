@@ -64,6 +64,7 @@ int render_scene(const RenderJob& job) {
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", job.size));
   render::RenderSettings settings = parse_render_options(job.style, job.color, job.display, job.colormap);
   settings.time_passes = job.time_passes;
+  if (spec.open) settings.walls = false;  // open space: no container to draw
   if (job.range_max > job.range_min) {
     settings.auto_range = false;
     settings.range_min = float(job.range_min);

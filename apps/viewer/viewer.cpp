@@ -931,6 +931,7 @@ int Viewer::run() {
   SimSpec spec = for_viewer(load_scene(opt_.scene), opt_.sets);
   if (!opt_.script.empty()) script_ = load_script(opt_.script);
   settings_ = parse_render_options(opt_.style, opt_.color, opt_.display, opt_.colormap);
+  if (spec.open) settings_.walls = false;  // open space: no container to draw
   int w = 0, h = 0;
   if (!parse_size(opt_.size, &w, &h))
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", opt_.size));

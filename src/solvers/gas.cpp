@@ -74,6 +74,9 @@ void Gas<D>::step() {
 template <int D>
 void Gas<D>::update_forces() {
   const std::size_t n = this->fluid_.size();
+  const bool global = this->spec_.gas_smoothing == GasSmoothing::Global;
+  double hg = 0;
+  Real cell = 0;
   {
     ScopedTimer timer(this->times_.neighbours_s);
     const Real hmax = this->pool_.parallel_reduce(n, MaxOf<Real>{0}, [&](std::size_t b, std::size_t e) {
@@ -83,15 +86,16 @@ void Gas<D>::update_forces() {
     }).value;
     // New particles (an emitter's) start from h = η·spacing, so the cell must hold that too.
     const Real h_new = Real(this->spec_.gas_eta * this->spec_.spacing);
-    const bool global = this->spec_.gas_smoothing == GasSmoothing::Global;
-    const double hg = global ? global_h() : 0.0;
-    const Real cell = this->follow_fluid(global ? Real(support_ratio(KernelType::Gaussian) * hg)
-                                                : Real(2 * kCellMargin) * std::max(hmax, h_new));
-    this->update_neighbours();
+    hg = global ? global_h() : 0.0;
+    cell = this->follow_fluid(global ? Real(support_ratio(KernelType::Gaussian) * hg)
+                                     : Real(2 * kCellMargin) * std::max(hmax, h_new));
+  }
+  this->update_neighbours();  // timed as neighbours by itself
+  {
+    ScopedTimer timer(this->times_.density_s);
     for (auto* a : {&omega_, &zeta_, &p_term_, &a_coef_, &cs_, &mass_}) a->resize(n);
     for (auto& a : gacc_) a.resize(n);
     std::fill(mass_.begin(), mass_.end(), Real(this->prm_.mass));
-    ScopedTimer density(this->times_.density_s);
     if (global)
       global_density(hg);
     else

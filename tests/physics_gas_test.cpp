@@ -248,8 +248,12 @@ TEST(Gas, PolytropeRelaxesToLaneEmden) {
     std::printf("  t = %4.1f: worst profile error inside 0.8 R %.2f%% of rho_c, KE %.2e, "
                 "E = %.5f (%llu steps)\n", sim->time(), 100 * err, st.kinetic_energy_j,
                 st.kinetic_energy_j + st.potential_energy_j, (unsigned long long)st.steps);
-    if (std::abs(t - s.end_time) < 1e-9 && scale() == 1.0) EXPECT_LT(err, 0.05);
-    if (std::abs(t - s.end_time) < 1e-9) write_profile_csv(*sim, "polytrope_star_3d");
+    if (std::abs(t - s.end_time) < 1e-9) {
+      if (scale() == 1.0) {  // under a sanitizer the run is too short to have relaxed
+        EXPECT_LT(err, 0.05);
+      }
+      write_profile_csv(*sim, "polytrope_star_3d");
+    }
   }
   EXPECT_FALSE(check_health(*sim).has_value());
 }

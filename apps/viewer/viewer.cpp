@@ -398,6 +398,7 @@ void Viewer::on_key(int key, int action, int mods, bool from_script) {
       status(gravity_on_ ? "gravity on" : "gravity off");
       break;
     case GLFW_KEY_1: toggle_fullscreen(); break;
+    case GLFW_KEY_0: settings_.color = render::ColorMode::LogDensity; break;
     case GLFW_KEY_5: settings_.color = render::ColorMode::Density; break;
     case GLFW_KEY_6: settings_.color = render::ColorMode::Pressure; break;
     case GLFW_KEY_7: settings_.color = render::ColorMode::Velocity; break;
@@ -764,9 +765,10 @@ void Viewer::draw_ui() {
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
     int sty = int(settings_.style);
     if (ImGui::Combo("style (F)", &sty, "particles\0water surface\0")) settings_.style = render::Style(sty);
-    const char* colors[] = {"solid (9)", "speed (8)", "velocity (7)", "pressure (6)", "density (5)"};
+    const char* colors[] = {"solid (9)", "speed (8)", "velocity (7)", "pressure (6)", "density (5)",
+                            "log density (0)"};
     int c = int(settings_.color);
-    if (ImGui::Combo("colour", &c, colors, 5)) settings_.color = render::ColorMode(c);
+    if (ImGui::Combo("colour", &c, colors, 6)) settings_.color = render::ColorMode(c);
     const char* maps[] = {"viridis", "turbo"};
     int m = int(settings_.map);
     if (ImGui::Combo("colour map", &m, maps, 2)) settings_.map = render::ColorMap(m);
@@ -931,7 +933,7 @@ int Viewer::run() {
   SimSpec spec = for_viewer(load_scene(opt_.scene), opt_.sets);
   if (!opt_.script.empty()) script_ = load_script(opt_.script);
   settings_ = parse_render_options(opt_.style, opt_.color, opt_.display, opt_.colormap);
-  if (spec.open) settings_.walls = false;  // open space: no container to draw
+  gas_defaults(spec, opt_.style, opt_.color, &settings_);
   int w = 0, h = 0;
   if (!parse_size(opt_.size, &w, &h))
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", opt_.size));
@@ -1065,7 +1067,7 @@ void add_view_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   cmd->add_option("--size", o->size, "Window size WxH")->capture_default_str();
   cmd->add_option("--style", o->style, "surface (water surface; 2D: filled contour) or particles")->capture_default_str();
-  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure or density (particle style)")->capture_default_str();
+  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure, density or log_density (particle style)")->capture_default_str();
   cmd->add_option("--display", o->display, "fluid, obstacles or all")->capture_default_str();
   cmd->add_option("--colormap", o->colormap, "viridis or turbo")->capture_default_str();
   cmd->add_flag("--paused", o->paused, "Start paused");

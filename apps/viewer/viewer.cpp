@@ -97,6 +97,7 @@ class Viewer {
   void upload_frame();
   SimSpec for_viewer(const SimSpec& scene, const std::vector<std::string>& sets);
   void frame();
+  void follow_cloud();  // open space: the camera's target moves with the fluid's centre
   void draw_ui();
   void draw_parameters();
   void run_script_step();
@@ -166,6 +167,7 @@ class Viewer {
   double run_t0_ = 0;
   std::vector<float> e_kin_, e_pot_, e_tot_;
   double e_pot0_ = 0;
+  std::optional<render::Vec3f> cloud_centre_;  // the fluid's centre at the last frame (open space)
 
   // scene picker
   std::vector<std::pair<std::string, std::string>> builtins_;
@@ -829,6 +831,20 @@ void Viewer::upload_frame() {
   renderer_->upload_solids(frame_.obstacle_solids);
 }
 
+// In open space a cloud (a star) may drift anywhere: the camera's target moves with the fluid's
+// centre (the mean position, equal masses), so panning and orbiting still work relative to it.
+void Viewer::follow_cloud() {
+  const ParticleView f = frame_.particles.fluid();
+  if (f.count == 0 || !f.x[0]) return;
+  double c[3] = {0, 0, 0};
+  for (int k = 0; k < f.dim; ++k)
+    for (std::size_t i = 0; i < f.count; ++i) c[k] += f.x[k][i];
+  const render::Vec3f centre{float(c[0] / double(f.count)), float(c[1] / double(f.count)),
+                             float(c[2] / double(f.count))};
+  if (cloud_centre_) cam_.target += centre - *cloud_centre_;
+  cloud_centre_ = centre;
+}
+
 void Viewer::frame() {
   if (!script_.empty()) run_script_step();
   // The GPU backend steps here, in this thread's context: at most about a 60th of a second per
@@ -844,8 +860,10 @@ void Viewer::frame() {
       e_tot_.clear();
       e_pot0_ = frame_.stats.potential_energy_j;
       obstacle_targets_.assign(frame_.obstacle_centers.size(), std::nullopt);
+      cloud_centre_.reset();
     }
     upload_frame();
+    if (spec_.open) follow_cloud();
     if (e_kin_.size() >= 4000) {
       // Keep the plot bounded: drop every other sample.
       for (auto* v : {&e_kin_, &e_pot_, &e_tot_}) {

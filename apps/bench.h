@@ -15,6 +15,7 @@ struct BenchOptions {
   int threads = 0;
   int steps = 30;
   std::string json;
+  std::string gravity;  // "direct" or "tree": the self-gravitating star instead of the dam break
   bool realtime = false;
   double window_s = 1.0;  // simulated time each real-time probe measures
 };
@@ -22,6 +23,10 @@ struct BenchOptions {
 /// The built-in dam break with its spacing chosen so the column holds about n particles, run by
 /// `method`, with h = spacing and the cubic spline (the performance target's setup).
 SimSpec dam_break_with(int dim, double n, const std::string& method);
+
+/// The n = 1 polytrope (`polytrope_star_3d`, gas with self-gravity by `gravity`: "direct" or
+/// "tree") with its spacing chosen so the sphere holds about n particles.
+SimSpec star_with(double n, const std::string& gravity);
 
 /// Bisects on the particle count for the largest dam break that `method` advances at ≥ 1 s of
 /// simulated time per second of wall time, over the first window_s simulated seconds.

@@ -5,6 +5,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <numbers>
 #include <sstream>
 
 #include "apps/bench.h"
@@ -32,6 +33,14 @@ SimSpec dam_break_with(int dim, double n, const std::string& method) {
   return s;
 }
 
+SimSpec star_with(double n, const std::string& gravity) {
+  SimSpec s = load_scene("polytrope_star_3d");
+  const double radius = 1.0;  // the scene's sphere, inscribed in [-1, 1]³
+  s.spacing = std::cbrt(4.0 / 3.0 * std::numbers::pi * radius * radius * radius / n);
+  s.gravity_solver = gravity == "tree" ? GravitySolver::Tree : GravitySolver::Direct;
+  return s;
+}
+
 namespace {
 int bench(const BenchOptions& o) {
   std::vector<double> sizes;
@@ -46,13 +55,18 @@ int bench(const BenchOptions& o) {
       throw std::invalid_argument(fmt::format("--particles: '{}': expected counts in [1, 1e9]", item));
   }
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
-  fmt::print("rtsph bench: {}D dam break, {}, cubic spline, h = spacing, {} threads, {} steps, backend {}\n",
-             o.dim, o.method, threads, o.steps, o.backend);
+  if (!o.gravity.empty())
+    fmt::print("rtsph bench: 3D n = 1 polytrope, gas, self-gravity by {} (in 'forces'), {} threads, "
+               "{} steps, backend {}\n", o.gravity, threads, o.steps, o.backend);
+  else
+    fmt::print("rtsph bench: {}D dam break, {}, cubic spline, h = spacing, {} threads, {} steps, backend {}\n",
+               o.dim, o.method, threads, o.steps, o.backend);
   fmt::print("{:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>9} {:>12} {:>8}\n", "fluid", "boundary",
              "ms/step", "neigh", "density", "forces", "integr", "particle-st/s", "B/part");
   nlohmann::ordered_json rows = nlohmann::json::array();
   for (double n : sizes) {
-    auto sim = BackendSimulation::make(dam_break_with(o.dim, n, o.method), threads, o.backend);
+    const SimSpec spec = o.gravity.empty() ? dam_break_with(o.dim, n, o.method) : star_with(n, o.gravity);
+    auto sim = BackendSimulation::make(spec, threads, o.backend);
     for (int i = 0; i < 3; ++i) sim->step();  // warm caches and allocations
     sim->wait_idle();
     sim->reset_stage_times();
@@ -81,8 +95,9 @@ int bench(const BenchOptions& o) {
   }
   if (!o.json.empty()) {
     nlohmann::ordered_json j;
-    j["dimension"] = o.dim;
-    j["method"] = o.method;
+    j["dimension"] = o.gravity.empty() ? o.dim : 3;
+    j["method"] = o.gravity.empty() ? o.method : "gas";
+    if (!o.gravity.empty()) j["gravity"] = o.gravity;
     j["threads"] = threads;
     j["backend"] = o.backend;
     j["steps"] = o.steps;
@@ -104,6 +119,10 @@ void add_bench_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--backend", o->backend, "Where the solver runs: cpu or gpu (OpenGL compute through EGL)")
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   cmd->add_option("--json", o->json, "Write the table as JSON to this file");
+  cmd->add_option("--gravity", o->gravity,
+                  "Benchmark self-gravity instead: the n = 1 polytrope (gas method) with gravity "
+                  "by direct summation or the Barnes-Hut tree")
+      ->check(CLI::IsMember({"direct", "tree"}));
   cmd->add_flag("--realtime", o->realtime,
                 "Search for the largest dam break this method runs in real time");
   cmd->add_option("--window", o->window_s, "Simulated seconds each --realtime probe measures")

@@ -15,7 +15,7 @@ uniform mat4 u_proj;
 uniform float u_radius;      // m
 uniform int u_dim;           // 2 or 3
 uniform int u_ortho;         // 1: orthographic projection
-uniform int u_color_mode;    // 0 solid, 1 speed, 2 velocity, 3 pressure, 4 density
+uniform int u_color_mode;    // 0 solid, 1 speed, 2 velocity, 3 pressure, 4 density, 5 log10 density
 uniform vec2 u_range;        // value mapped to the ends of the colour map
 uniform vec3 u_solid;        // colour for mode 0
 uniform sampler2D u_lut;     // colour map, 1 texel high
@@ -61,6 +61,8 @@ void main() {
     v_color = lut(norm_range(a_p));
   } else if (u_color_mode == 4) {
     v_color = lut(norm_range(a_rho));
+  } else if (u_color_mode == 5) {
+    v_color = lut(norm_range(log(max(a_rho, 1e-30)) * 0.43429448));
   } else {
     v_color = u_solid;
   }

@@ -374,7 +374,7 @@ TEST_P(RenderGl, GridWallsAndLegendDrawWithoutErrors) {
   Camera cam;
   cam.frame({0, 0, 0}, {1, 0.6f, 0.8f}, float(W) / H);
   for (ColorMode m : {ColorMode::Solid, ColorMode::Speed, ColorMode::Velocity, ColorMode::Pressure,
-                      ColorMode::Density}) {
+                      ColorMode::Density, ColorMode::LogDensity}) {
     RenderSettings s;
     s.primitive = GetParam();
     s.color = m;

@@ -83,7 +83,12 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
                           "solver.pbf.scorr_k", "solver.pbf.scorr_n", "solver.pbf.scorr_dq",
                           "solver.pbf.xsph", "solver.pbf.vorticity",
                           "solver.dfsph.max_density_error", "solver.dfsph.max_divergence_error",
-                          "solver.dfsph.max_iterations", "gravity", "body_force", "end_time"})
+                          "solver.dfsph.max_iterations", "domain.open", "solver.gas.eta",
+                          "solver.gas.smoothing", "solver.gas.global_b",
+                          "solver.gas.eos", "solver.gas.polytropic_k", "solver.gas.gamma",
+                          "solver.gas.damping", "solver.gas.spring", "solver.gas.self_gravity",
+                          "gravitational_constant", "solver.gas.gravity_solver",
+                          "solver.gas.theta", "gravity", "body_force", "end_time"})
     EXPECT_NE(find_param(key), nullptr) << key;
   std::set<std::string> live;
   for (const auto& p : parameter_table())
@@ -101,7 +106,10 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
                                          "solver.pbf.xsph", "solver.pbf.vorticity",
                                          "solver.dfsph.max_density_error",
                                          "solver.dfsph.max_divergence_error",
-                                         "solver.dfsph.max_iterations"}));
+                                         "solver.dfsph.max_iterations",
+                                         // the gas method reads these afresh each step
+                                         "solver.gas.damping", "solver.gas.spring",
+                                         "solver.gas.self_gravity", "solver.gas.theta"}));
   EXPECT_EQ(find_param("solver.method")->choices, solver_methods());
 }
 

@@ -153,6 +153,9 @@ TEST_P(Methods, OverwritingTheFluidWithItsOwnStateChangesNothing) {
 // method steps the fluid: a continuous 2D jet (a layer of width/spacing particles every
 // spacing/speed) into an empty tank, no gravity, so nothing but the solver acts on the jet.
 TEST_P(Methods, EmitterDeliversItsLayersAtItsSpeed) {
+  // A gas jet into vacuum expands and accelerates under its own pressure (no rest density to
+  // hold it together): the property is the liquids'.
+  if (GetParam() == std::string("gas")) GTEST_SKIP() << "a gas jet expands into vacuum";
   SimSpec s = load_scene("nozzle_obstacle_2d");
   s = with_method(s, GetParam());
   s.obstacles.clear();
@@ -196,7 +199,7 @@ TEST_P(Methods, RunEveryBuiltInScene) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(All, Methods, ::testing::Values("wcsph", "pbf", "dfsph"),
+INSTANTIATE_TEST_SUITE_P(All, Methods, ::testing::Values("wcsph", "pbf", "dfsph", "gas"),
                          [](const auto& info) { return info.param; });
 
 // DFSPH keeps the mean density error at its tolerance through a collapsing column, with the

@@ -64,6 +64,7 @@ int render_scene(const RenderJob& job) {
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", job.size));
   render::RenderSettings settings = parse_render_options(job.style, job.color, job.display, job.colormap);
   settings.time_passes = job.time_passes;
+  gas_defaults(spec, job.style, job.color, &settings);
   if (job.range_max > job.range_min) {
     settings.auto_range = false;
     settings.range_min = float(job.range_min);
@@ -178,7 +179,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--fps", o->fps, "Frames per simulated second; frames are 1/fps apart")->capture_default_str()->check(CLI::PositiveNumber);
   cmd->add_option("--size", o->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--style", o->style, "surface (water surface; 2D: filled contour) or particles")->capture_default_str();
-  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure or density (particle style)")->capture_default_str();
+  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure, density or log_density (particle style)")->capture_default_str();
   cmd->add_option("--display", o->display, "fluid, obstacles (fluid + obstacles) or all (with wall particles)")->capture_default_str();
   cmd->add_option("--colormap", o->colormap, "viridis or turbo")->capture_default_str();
   cmd->add_option("--range", o->range, "Fixed colour range MIN,MAX (default: automatic per frame)")->expected(2)->delimiter(',');

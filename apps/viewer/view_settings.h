@@ -4,6 +4,7 @@
 #include <string>
 
 #include "render/render_settings.h"
+#include "solvers/spec.h"
 
 namespace rtsph::app {
 
@@ -11,6 +12,12 @@ namespace rtsph::app {
 render::RenderSettings parse_render_options(const std::string& style, const std::string& color,
                                             const std::string& display,
                                             const std::string& colormap);
+
+/// Scene-dependent defaults: no container drawn in open space; for the gas method, particles
+/// coloured by log10 ρ when `style` and `color` are the commands' defaults ("surface",
+/// "solid" or "speed"), since a gas has no free surface and its density spans decades.
+void gas_defaults(const SimSpec& spec, const std::string& style, const std::string& color,
+                  render::RenderSettings* s);
 
 inline constexpr const char* kViewerHelp =
     "Mouse\n"
@@ -25,7 +32,7 @@ inline constexpr const char* kViewerHelp =
     "  R       reset                 G   gravity on / off\n"
     "  1       fullscreen            TAB display: fluid / +obstacles / all\n"
     "  F       style: water surface / particles\n"
-    "  5 6 7 8 9   colour (particle style): density / pressure / velocity / speed / solid\n"
+    "  0 5 6 7 8 9 colour (particle style): log density / density / pressure / velocity / speed / solid\n"
     "  arrows  rotate the camera (2D: pan)\n"
     "  q/w a/s z/x   move the selected obstacle along -/+ x, y, z\n"
     "  F12     screenshot (PNG)      V   start / stop video recording\n"

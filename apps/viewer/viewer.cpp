@@ -97,6 +97,7 @@ class Viewer {
   void upload_frame();
   SimSpec for_viewer(const SimSpec& scene, const std::vector<std::string>& sets);
   void frame();
+  void follow_cloud();  // open space: the camera's target moves with the fluid's centre
   void draw_ui();
   void draw_parameters();
   void run_script_step();
@@ -166,6 +167,7 @@ class Viewer {
   double run_t0_ = 0;
   std::vector<float> e_kin_, e_pot_, e_tot_;
   double e_pot0_ = 0;
+  std::optional<render::Vec3f> cloud_centre_;  // the fluid's centre at the last frame (open space)
 
   // scene picker
   std::vector<std::pair<std::string, std::string>> builtins_;
@@ -398,6 +400,7 @@ void Viewer::on_key(int key, int action, int mods, bool from_script) {
       status(gravity_on_ ? "gravity on" : "gravity off");
       break;
     case GLFW_KEY_1: toggle_fullscreen(); break;
+    case GLFW_KEY_0: settings_.color = render::ColorMode::LogDensity; break;
     case GLFW_KEY_5: settings_.color = render::ColorMode::Density; break;
     case GLFW_KEY_6: settings_.color = render::ColorMode::Pressure; break;
     case GLFW_KEY_7: settings_.color = render::ColorMode::Velocity; break;
@@ -764,9 +767,10 @@ void Viewer::draw_ui() {
   if (ImGui::CollapsingHeader("View", ImGuiTreeNodeFlags_DefaultOpen)) {
     int sty = int(settings_.style);
     if (ImGui::Combo("style (F)", &sty, "particles\0water surface\0")) settings_.style = render::Style(sty);
-    const char* colors[] = {"solid (9)", "speed (8)", "velocity (7)", "pressure (6)", "density (5)"};
+    const char* colors[] = {"solid (9)", "speed (8)", "velocity (7)", "pressure (6)", "density (5)",
+                            "log density (0)"};
     int c = int(settings_.color);
-    if (ImGui::Combo("colour", &c, colors, 5)) settings_.color = render::ColorMode(c);
+    if (ImGui::Combo("colour", &c, colors, 6)) settings_.color = render::ColorMode(c);
     const char* maps[] = {"viridis", "turbo"};
     int m = int(settings_.map);
     if (ImGui::Combo("colour map", &m, maps, 2)) settings_.map = render::ColorMap(m);
@@ -827,6 +831,20 @@ void Viewer::upload_frame() {
   renderer_->upload_solids(frame_.obstacle_solids);
 }
 
+// In open space a cloud (a star) may drift anywhere: the camera's target moves with the fluid's
+// centre (the mean position, equal masses), so panning and orbiting still work relative to it.
+void Viewer::follow_cloud() {
+  const ParticleView f = frame_.particles.fluid();
+  if (f.count == 0 || !f.x[0]) return;
+  double c[3] = {0, 0, 0};
+  for (int k = 0; k < f.dim; ++k)
+    for (std::size_t i = 0; i < f.count; ++i) c[k] += f.x[k][i];
+  const render::Vec3f centre{float(c[0] / double(f.count)), float(c[1] / double(f.count)),
+                             float(c[2] / double(f.count))};
+  if (cloud_centre_) cam_.target += centre - *cloud_centre_;
+  cloud_centre_ = centre;
+}
+
 void Viewer::frame() {
   if (!script_.empty()) run_script_step();
   // The GPU backend steps here, in this thread's context: at most about a 60th of a second per
@@ -842,8 +860,10 @@ void Viewer::frame() {
       e_tot_.clear();
       e_pot0_ = frame_.stats.potential_energy_j;
       obstacle_targets_.assign(frame_.obstacle_centers.size(), std::nullopt);
+      cloud_centre_.reset();
     }
     upload_frame();
+    if (spec_.open) follow_cloud();
     if (e_kin_.size() >= 4000) {
       // Keep the plot bounded: drop every other sample.
       for (auto* v : {&e_kin_, &e_pot_, &e_tot_}) {
@@ -931,6 +951,7 @@ int Viewer::run() {
   SimSpec spec = for_viewer(load_scene(opt_.scene), opt_.sets);
   if (!opt_.script.empty()) script_ = load_script(opt_.script);
   settings_ = parse_render_options(opt_.style, opt_.color, opt_.display, opt_.colormap);
+  gas_defaults(spec, opt_.style, opt_.color, &settings_);
   int w = 0, h = 0;
   if (!parse_size(opt_.size, &w, &h))
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", opt_.size));
@@ -1064,7 +1085,7 @@ void add_view_command(CLI::App& app, int& exit_code) {
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   cmd->add_option("--size", o->size, "Window size WxH")->capture_default_str();
   cmd->add_option("--style", o->style, "surface (water surface; 2D: filled contour) or particles")->capture_default_str();
-  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure or density (particle style)")->capture_default_str();
+  cmd->add_option("--color", o->color, "solid, speed, velocity, pressure, density or log_density (particle style)")->capture_default_str();
   cmd->add_option("--display", o->display, "fluid, obstacles or all")->capture_default_str();
   cmd->add_option("--colormap", o->colormap, "viridis or turbo")->capture_default_str();
   cmd->add_flag("--paused", o->paused, "Start paused");

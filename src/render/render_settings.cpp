@@ -9,13 +9,14 @@ std::string_view color_mode_name(ColorMode m) {
     case ColorMode::Velocity: return "velocity";
     case ColorMode::Pressure: return "pressure";
     case ColorMode::Density: return "density";
+    case ColorMode::LogDensity: return "log_density";
   }
   return "solid";
 }
 
 bool parse_color_mode(std::string_view s, ColorMode* out) {
   for (ColorMode m : {ColorMode::Solid, ColorMode::Speed, ColorMode::Velocity, ColorMode::Pressure,
-                      ColorMode::Density})
+                      ColorMode::Density, ColorMode::LogDensity})
     if (s == color_mode_name(m)) {
       *out = m;
       return true;

@@ -7,7 +7,8 @@
 
 namespace rtsph::render {
 
-enum class ColorMode { Solid, Speed, Velocity, Pressure, Density };
+/// LogDensity: log₁₀ ρ, for a self-gravitating gas whose density spans decades.
+enum class ColorMode { Solid, Speed, Velocity, Pressure, Density, LogDensity };
 /// Fluid: fluid only. FluidObstacles: fluid and obstacle solids. All: also every boundary
 /// particle (walls and the obstacles' Akinci samples), in the wall particle colour.
 enum class DisplayMode { Fluid, FluidObstacles, All };

@@ -226,6 +226,8 @@ std::pair<float, float> Renderer::data_range(ColorMode m) const {
     case ColorMode::Velocity: return {0.0f, max_speed_};
     case ColorMode::Pressure: return {p_min_, p_max_};
     case ColorMode::Density: return {rho_min_, rho_max_};
+    case ColorMode::LogDensity:  // the shader's log10 of ρ, floored as it floors it
+      return {std::log10(std::max(rho_min_, 1e-30f)), std::log10(std::max(rho_max_, 1e-30f))};
     case ColorMode::Solid: break;
   }
   return {0.0f, 1.0f};
@@ -262,6 +264,7 @@ LegendLayout Renderer::legend_layout(int width, int height, const RenderSettings
     case ColorMode::Velocity: L.title = dim_ == 3 ? "velocity: rgb=dir" : "velocity: hue=dir"; break;
     case ColorMode::Pressure: L.title = "pressure Pa"; break;
     case ColorMode::Density: L.title = "density kg/m3"; break;
+    case ColorMode::LogDensity: L.title = "log10 density"; break;
     case ColorMode::Solid: break;
   }
   return L;

@@ -19,6 +19,9 @@ constexpr std::pair<std::string_view, std::string_view> kDescriptions[] = {
     {"hydrostatic_2d", "Water at rest in a 1 m box: pressure should settle to ρgh (5,000 particles)"},
     {"nozzle_obstacle_2d", "A 2.5 m/s jet hitting a fixed circle in a 2 m tank (up to 8,000 particles)"},
     {"nozzle_moving_obstacle_2d", "The nozzle jet with the circle sweeping back and forth (up to 8,000 particles)"},
+    {"toy_star_2d", "Toy star (Monaghan & Price 2004): polytropic gas in a linear force, code units, relaxing to ρ ∝ R² − r² (1,976 particles)"},
+    {"polytrope_star_3d", "n = 1 polytrope under its own gravity, code units G = 1, relaxing to Lane–Emden (5,616 particles)"},
+    {"colliding_stars_3d", "Two n = 1 polytropes on an off-centre collision course, G = 1, tree gravity (4,352 particles)"},
     {"validate_poiseuille_2d", "Poiseuille start-up (Morris et al. 1997): 1 mm channel, periodic in x, driven by a body force (160 particles)"},
 };
 

@@ -84,13 +84,19 @@ const std::vector<ParamInfo>& parameter_table() {
                                          "the seam, and there are no walls on those axes. Each "
                                          "periodic extent must be a whole number of spacings and "
                                          "at least three kernel supports."}),
+      field<&SimSpec::open>({.key = "domain.open", .default_value = 0,
+                             .help = "Open space (the gas method's stars): no walls and no "
+                                     "put-back; the domain only bounds the fluid blocks at t = 0, "
+                                     "and the neighbour grid follows the particles' bounding box."}),
       field<&SimSpec::spacing>({.key = "fluid.spacing", .unit = "m", .min = 1e-5, .max = 10,
                                 .default_value = 0.02,
                                 .help = "Initial particle spacing. Halving it multiplies the "
                                         "particle count by 4 (2D) or 8 (3D)."}),
-      field<&SimSpec::rest_density>({.key = "fluid.rest_density", .unit = "kg/m³", .min = 1,
-                                     .max = 1e5, .default_value = 1000,
-                                     .help = "Rest density ρ0; sets the particle mass ρ0·spacing^d."}),
+      field<&SimSpec::rest_density>({.key = "fluid.rest_density", .unit = "kg/m³", .min = 1e-6,
+                                     .max = 1e6, .default_value = 1000,
+                                     .help = "Rest density ρ0; sets the particle mass ρ0·spacing^d "
+                                             "(the gas method: the initial density, in code "
+                                             "units for the star scenes)."}),
       field<&SimSpec::viscosity>({.key = "fluid.viscosity", .unit = "m²/s", .min = 0, .max = 10,
                                   .default_value = 1e-6,
                                   .help = "Kinematic viscosity ν (Morris et al. 1997). Water: 1e-6.",
@@ -99,8 +105,10 @@ const std::vector<ParamInfo>& parameter_table() {
                                .choices = solver_methods(),
                                .help = "Solver method: wcsph (weakly compressible, small explicit steps), "
                                        "pbf (position based fluids: large fixed steps, for "
-                                       "real time) or dfsph (divergence-free SPH: implicit, "
-                                       "large steps, accurate)."}),
+                                       "real time), dfsph (divergence-free SPH: implicit, "
+                                       "large steps, accurate) or gas (compressible, "
+                                       "self-gravitating gas with adaptive smoothing lengths: "
+                                       "stars; solver.gas.*)."}),
       field<&SimSpec::backend>({.key = "solver.backend", .default_text = "auto",
                                 .choices = {"auto", "cpu", "gpu"},
                                 .help = "Where the solver runs: cpu, gpu (OpenGL 4.3 compute; "
@@ -228,6 +236,64 @@ const std::vector<ParamInfo>& parameter_table() {
                                              .help = "Iteration cap of each DFSPH solve; hitting "
                                                      "it stops the run (instability guard).",
                                              .live = true}),
+      field<&SimSpec::gas_smoothing>({.key = "solver.gas.smoothing", .default_text = "adaptive",
+                                      .choices = {"adaptive", "global"},
+                                      .help = "Gas: adaptive hᵢ = η (mᵢ/ρᵢ)^(1/d) with the cubic "
+                                              "spline and grad-h terms (Price 2012), or global: "
+                                              "one h = b (⟨|x|²⟩ − |⟨x⟩|²)^½ for all particles "
+                                              "with the Gaussian kernel (Gingold & Monaghan "
+                                              "1977, eq. 4)."}),
+      field<&SimSpec::gas_global_b>({.key = "solver.gas.global_b", .min = 0, .max = 10,
+                                     .min_exclusive = true, .default_value = 0.1,
+                                     .help = "Gas, global smoothing: b of h = b (⟨|x|²⟩ − "
+                                             "|⟨x⟩|²)^½, the particles' positional spread."}),
+      field<&SimSpec::gas_eta>({.key = "solver.gas.eta", .min = 0.5, .max = 3, .default_value = 1.2,
+                                .help = "Gas: adaptive smoothing length hᵢ = η (mᵢ/ρᵢ)^(1/d), "
+                                        "solved with the density by Newton–Raphson (Price 2012). "
+                                        "1.2 gives ~58 neighbours in 3D with the cubic spline."}),
+      field<&SimSpec::gas_eos>({.key = "solver.gas.eos", .default_text = "polytropic",
+                                .choices = {"polytropic", "adiabatic"},
+                                .help = "Gas: polytropic p = K ρ^γ (barotropic), or adiabatic "
+                                        "p = (γ-1) ρ u with the internal energy u evolved and "
+                                        "heated by the artificial viscosity (u starts at "
+                                        "K ρ^(γ-1)/(γ-1))."}),
+      field<&SimSpec::gas_k>({.key = "solver.gas.polytropic_k", .unit = "Pa·(m³/kg)^γ", .min = 0,
+                              .max = 1e30, .min_exclusive = true, .default_value = 1,
+                              .help = "Gas: polytropic constant K of p = K ρ^γ."}),
+      field<&SimSpec::gas_gamma>({.key = "solver.gas.gamma", .min = 1, .max = 5,
+                                  .min_exclusive = true, .default_value = 2,
+                                  .help = "Gas: γ of p = K ρ^γ (2: the n = 1 polytrope) or of "
+                                          "the ideal gas."}),
+      field<&SimSpec::gas_damping>({.key = "solver.gas.damping", .unit = "1/s", .min = 0, .max = 1e6,
+                                    .default_value = 0,
+                                    .help = "Gas: velocity damping a = -damping·v, to relax a star "
+                                            "into equilibrium; 0 = off.",
+                                    .live = true}),
+      field<&SimSpec::gas_spring>({.key = "solver.gas.spring", .unit = "1/s²", .min = 0, .max = 1e12,
+                                   .default_value = 0,
+                                   .help = "Gas: linear external force a = -spring·x toward the "
+                                           "origin (the toy star's λ, Monaghan & Price 2004); "
+                                           "0 = off.",
+                                   .live = true}),
+      field<&SimSpec::self_gravity>({.key = "solver.gas.self_gravity", .default_value = 0,
+                                     .help = "Gas: self-gravity, softened by the kernel (Price & "
+                                             "Monaghan 2007).",
+                                     .live = true}),
+      field<&SimSpec::gravitational_constant>({.key = "gravitational_constant", .unit = "m³/(kg·s²)",
+                                               .min = 0, .max = 1e30, .default_value = 6.674e-11,
+                                               .help = "G of the gas method's self-gravity: SI by "
+                                                       "default; the star scenes use code units, "
+                                                       "G = 1."}),
+      field<&SimSpec::gravity_solver>({.key = "solver.gas.gravity_solver", .default_text = "direct",
+                                       .choices = {"direct", "tree"},
+                                       .help = "Gas: self-gravity by direct summation (exact, "
+                                               "O(N²), up to ~20k particles) or the Barnes–Hut "
+                                               "octree (3D)."}),
+      field<&SimSpec::gravity_theta>({.key = "solver.gas.theta", .min = 0, .max = 1.5,
+                                      .default_value = 0.5,
+                                      .help = "Gas: the tree's opening angle θ (smaller: more "
+                                              "accurate, slower).",
+                                      .live = true}),
       field<&SimSpec::gravity>({.key = "gravity", .unit = "m/s²", .min = -1000, .max = 1000,
                                 .default_vec = {0, -9.81, 0},
                                 .help = "Gravitational acceleration; y is up.", .live = true}),
@@ -259,6 +325,10 @@ const std::vector<FieldInfo<FluidBlock>>& fluid_block_fields() {
       field<&FluidBlock::max>({.key = "max", .unit = "m", .min = -kLength, .max = kLength,
                                .help = "Upper corner; the block must lie inside the domain.",
                                .required = true}),
+      field<&FluidBlock::shape>({.key = "shape", .default_text = "box",
+                                 .choices = {"box", "sphere"}, .choices_2d = {"rectangle", "circle"},
+                                 .help = "box (rectangle) fills [min, max]; sphere (circle) fills "
+                                         "the ball inscribed in it."}),
       field<&FluidBlock::velocity>({.key = "velocity", .unit = "m/s", .min = -kSpeed, .max = kSpeed,
                                     .help = "Initial velocity of the block's particles."}),
   };

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <stdexcept>
 
 #include "core/timer.h"
@@ -193,6 +194,7 @@ void FluidWorld<D>::put_back_escaped() {
   // its outward velocity. NaN positions fail both comparisons and are put back too. The walls
   // hold by themselves (drift's contact, PBF's collision response), so this is a diagnostic:
   // any count here is a particle the boundary handling let through.
+  if (spec_.open) return;  // open space: nothing to escape from
   const Real margin = Real(0.25 * spec_.spacing);
   Real lo[D], hi[D];
   for (int k = 0; k < D; ++k) {
@@ -228,6 +230,46 @@ void FluidWorld<D>::update_neighbours() {
   sort_fluid_by_cell();  // counting sort, arrays reordered by cell (Ihmsen et al. 2011)
   if (boundary_moving_) sort_boundary_by_cell();
   if (keep_lists_) build_neighbour_lists();
+}
+
+template <int D>
+Real FluidWorld<D>::follow_fluid(Real cell) {
+  struct Box {
+    Real lo[D], hi[D];
+    Box() {
+      for (int k = 0; k < D; ++k) { lo[k] = std::numeric_limits<Real>::max(); hi[k] = -lo[k]; }
+    }
+    Box& operator+=(const Box& o) {
+      for (int k = 0; k < D; ++k) { lo[k] = std::min(lo[k], o.lo[k]); hi[k] = std::max(hi[k], o.hi[k]); }
+      return *this;
+    }
+  };
+  const Box box = pool_.parallel_reduce(fluid_.size(), Box{}, [&](std::size_t b, std::size_t e) {
+    Box r;
+    for (std::size_t i = b; i < e; ++i)
+      for (int k = 0; k < D; ++k) {
+        const Real x = fluid_.x[k][i];
+        if (!std::isfinite(x)) continue;  // the instability guard reports it
+        r.lo[k] = std::min(r.lo[k], x);
+        r.hi[k] = std::max(r.hi[k], x);
+      }
+    return r;
+  });
+  Vec<D> lo, hi;
+  double cells = 1;
+  for (int k = 0; k < D; ++k) {
+    if (!(box.lo[k] <= box.hi[k])) { lo[k] = 0; hi[k] = cell; continue; }
+    lo[k] = box.lo[k] - cell;
+    hi[k] = box.hi[k] + cell;
+    cells *= std::max(1.0, double(hi[k] - lo[k]) / double(cell));
+  }
+  // A few particles far from the rest (a tidal tail) would make a grid of fine cells huge:
+  // coarsen until there are at most ~4 cells per particle (cells grow, candidates with them,
+  // but every pair within `cell` is still found).
+  const double limit = 4.0 * double(std::max<std::size_t>(fluid_.size(), 64));
+  if (cells > limit) cell = Real(double(cell) * std::pow(cells / limit, 1.0 / D));
+  ctx_.fluid_grid.configure(lo, hi, cell);
+  return cell;
 }
 
 template <int D>

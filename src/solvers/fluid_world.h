@@ -167,7 +167,7 @@ class FluidWorld : public Simulation {
     WallPlanes w;
     const Real inf = std::numeric_limits<Real>::infinity();
     for (int k = 0; k < D; ++k) {
-      const bool wrap = ctx_.fluid_grid.periodic(k);
+      const bool wrap = ctx_.fluid_grid.periodic(k) || spec_.open;  // open space: no walls
       w.lo[k] = wrap ? -inf : Real(prm_.domain_min[k]);
       w.hi[k] = wrap ? inf : Real(prm_.domain_max[k]);
     }
@@ -188,6 +188,11 @@ class FluidWorld : public Simulation {
     put_back_escaped();
   }
   void update_neighbours();              // sort fluid (and moving boundary) by cell
+  /// Re-covers the fluid grid with the fluid's bounding box and cells of edge `cell` (coarsened
+  /// so the grid never has more than ~4 cells per particle), for methods whose support changes
+  /// (adaptive h) or whose fluid moves in open space; call before update_neighbours(). Memory
+  /// stays bounded however far the cloud drifts. Returns the cell edge used.
+  Real follow_fluid(Real cell);
   /// Methods that sum over the same neighbourhood many times per step ask for neighbour lists:
   /// update_neighbours() then also lists each particle's fluid neighbours, and every shared
   /// and method pair sum walks the list instead of the grid until the next update.

@@ -73,6 +73,19 @@ void for_each_index(int dim, const long lo[3], const long hi[3], Fn&& fn) {
 }
 }  // namespace
 
+namespace {
+// The ball (disc) inscribed in the block: centred, radius half its smallest side.
+bool inside_ball(const FluidBlock& b, const Vec3d& p, int dim) {
+  double r = 1e300, d2 = 0;
+  for (int k = 0; k < dim; ++k) {
+    r = std::min(r, 0.5 * (b.max[k] - b.min[k]));
+    const double d = p[k] - 0.5 * (b.min[k] + b.max[k]);
+    d2 += d * d;
+  }
+  return d2 <= r * r;
+}
+}  // namespace
+
 std::vector<Vec3d> sample_fluid(const SimSpec& s) {
   std::vector<Vec3d> out;
   std::vector<Pose> poses;
@@ -83,6 +96,7 @@ std::vector<Vec3d> sample_fluid(const SimSpec& s) {
     for_each_index(s.dimension, lo, hi, [&](const long* i) {
       Vec3d p{};
       for (int k = 0; k < s.dimension; ++k) p[k] = b.min[k] + (double(i[k]) + 0.5) * s.spacing;
+      if (b.shape == BlockShape::Ball && !inside_ball(b, p, s.dimension)) return;
       for (std::size_t o = 0; o < s.obstacles.size(); ++o)
         if (obstacle_distance(s.obstacles[o], poses[o], p, s.dimension) < 0.5 * s.spacing) return;
       out.push_back(p);
@@ -93,6 +107,7 @@ std::vector<Vec3d> sample_fluid(const SimSpec& s) {
 
 std::vector<BoundarySample> sample_walls(const SimSpec& s) {
   std::vector<BoundarySample> out;
+  if (s.open) return out;  // open space: no container
   const long L = std::max(1, s.boundary_layers);
   long lo[3] = {0, 0, 0}, hi[3] = {0, 0, 0}, n[3] = {1, 1, 1};
   double step[3] = {0, 0, 0};
@@ -201,7 +216,7 @@ ParticleCounts count_particles(const SimSpec& s) {
     outer *= n + 2 * L;
     cells *= std::ceil((s.domain_max[k] - s.domain_min[k] + 2 * (L + 1) * s.spacing) / support) + 2;
   }
-  c.boundary = outer - inner;
+  c.boundary = s.open ? 0.0 : outer - inner;
   const double pi = std::numbers::pi;
   for (const auto& o : s.obstacles) {
     double area = 0;  // surface measure / spacing^(D-1), per layer

@@ -78,7 +78,8 @@ std::optional<HealthIssue> check_health(const Simulation& sim, double max_densit
     }
   }
 
-  if (!issue && f.density) {
+  // A compressible gas has no rest density to be compressed beyond: only non-finite values.
+  if (!issue && f.density && sim.spec().method != "gas") {
     const double rho0 = sim.spec().rest_density;
     const float limit = float(rho0 * (1.0 + max_density_error));
     if (!any_above(f.density, n, limit)) return std::nullopt;

@@ -6,6 +6,7 @@
 
 #include "solvers/geometry.h"
 #include "solvers/dfsph.h"
+#include "solvers/gas.h"
 #include "solvers/pbf.h"
 #include "solvers/wcsph.h"
 
@@ -21,10 +22,11 @@ template <template <int> class S, int D>
 std::unique_ptr<Simulation> make(const SimSpec& s, int threads) {
   return std::make_unique<S<D>>(s, threads);
 }
-constexpr std::array<SolverEntry, 3> kSolvers{{
+constexpr std::array<SolverEntry, 4> kSolvers{{
     {"wcsph", &make<Wcsph, 2>, &make<Wcsph, 3>},
     {"pbf", &make<Pbf, 2>, &make<Pbf, 3>},
     {"dfsph", &make<Dfsph, 2>, &make<Dfsph, 3>},
+    {"gas", &make<Gas, 2>, &make<Gas, 3>},
 }};
 }  // namespace
 
@@ -36,11 +38,14 @@ std::vector<std::string> solver_methods() {
 
 // Bytes per particle of the WCSPH storage: fluid x,v,a (3D), ρ, p, id; scratch p/ρ², 1/ρ,
 // permutation temp; grid keys, sorted keys and order. Boundary: x, v, local, Ψ, owner, grid.
-// PBF and DFSPH add up to 2D + 3 floats per particle of their own.
+// PBF and DFSPH add up to 2D + 3 floats per particle of their own, the gas method 11 + 3D.
 std::size_t estimate_memory_bytes(const SimSpec& s) {
   const auto c = count_particles(s);
   const double D = s.dimension;
-  const double method_bytes = s.method == "wcsph" ? 0.0 : 4.0 * (2 * D + 3);
+  // The gas method keeps 5 + 2D fields and 6 + D scratch arrays (gas.h).
+  const double method_bytes = s.method == "wcsph" ? 0.0
+                              : s.method == "gas" ? 4.0 * (11 + 3 * D)
+                                                  : 4.0 * (2 * D + 3);
   const double fluid_bytes = 4.0 * (3 * D + 3) + 4.0 * 3 + 4.0 * 3 + method_bytes;
   const double boundary_bytes = 4.0 * (3 * D + 2) + 4.0 * 4;
   const double total = (c.fluid + c.emitted_max) * fluid_bytes + c.boundary * boundary_bytes +

@@ -35,6 +35,9 @@ struct SimStats {
   double mean_pressure_iterations = 0, mean_divergence_iterations = 0;
   std::uint64_t particles_put_back = 0; // escaped the domain and were put back inside
   double kinetic_energy_j = 0, potential_energy_j = 0;
+  // The gas method's parts of potential_energy_j (which also holds the external potential):
+  // thermal Σ m u and gravitational ½ Σ m Φ.
+  double thermal_energy_j = 0, gravitational_energy_j = 0;
   double max_speed = 0;                 // m/s
   std::size_t bytes = 0;                // particle, grid and scratch storage
 };

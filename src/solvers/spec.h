@@ -15,12 +15,17 @@ enum class Eos { Tait, Linear };
 enum class TimeStepMode { Cfl, Fixed };
 enum class ObstacleShape { Box, Sphere };  // 2D: "rectangle" and "circle" map to these
 enum class MotionKind { Static, Velocity, Path };
+enum class BlockShape { Box, Ball };  // 2D: "rectangle" and "circle"
+enum class GasEos { Polytropic, Adiabatic };
+enum class GasSmoothing { Adaptive, Global };
+enum class GravitySolver { Direct, Tree };
 /// Periodic axes as a bit set (x = 1, y = 2, z = 4), spelled "none", "x", "y", "xy", … in JSON.
 enum class PeriodicAxes { None, X, Y, XY, Z, XZ, YZ, XYZ };
 inline bool axis_is_periodic(PeriodicAxes p, int axis) { return (int(p) >> axis) & 1; }
 
 struct FluidBlock {
   Vec3d min{}, max{};     // m
+  BlockShape shape = BlockShape::Box;  // Ball: the ball (disc) inscribed in [min, max]
   Vec3d velocity{};       // m/s
 };
 
@@ -56,6 +61,7 @@ struct SimSpec {
   int dimension = 3;
   Vec3d domain_min{0, 0, 0}, domain_max{1, 1, 1};  // m, the container walls
   PeriodicAxes periodic = PeriodicAxes::None;      // axes that wrap (no walls there)
+  bool open = false;  // open space: no walls, the domain only bounds the initial fluid
 
   // fluid
   double spacing = 0.02;           // m, initial particle spacing
@@ -98,6 +104,20 @@ struct SimSpec {
   double dfsph_max_divergence_error = 1e-3;  // mean (Dρ/Dt)·dt/ρ0 at which the divergence solve stops
   int dfsph_max_iterations = 100;
 
+  // Gas, self-gravitating SPH with adaptive smoothing lengths (method "gas"; docs/self-gravity.md)
+  GasSmoothing gas_smoothing = GasSmoothing::Adaptive;
+  double gas_eta = 1.2;            // hᵢ = η (mᵢ/ρᵢ)^(1/d)  (Price 2012, eq. 10)
+  double gas_global_b = 0.1;       // global h = b (⟨|x|²⟩ − |⟨x⟩|²)^½  (Gingold & Monaghan 1977)
+  GasEos gas_eos = GasEos::Polytropic;
+  double gas_k = 1.0;              // polytropic constant K in p = K ρ^γ (SI: Pa·(m³/kg)^γ)
+  double gas_gamma = 2.0;          // γ of the polytrope or the adiabatic ideal gas
+  double gas_damping = 0;          // 1/s, a = −damping·v (relaxation to equilibrium)
+  double gas_spring = 0;           // 1/s², a = −spring·x (the toy star's linear force)
+  bool self_gravity = false;
+  double gravitational_constant = 6.674e-11;  // m³/(kg s²); code units: 1
+  GravitySolver gravity_solver = GravitySolver::Direct;
+  double gravity_theta = 0.5;      // Barnes–Hut opening angle (tree)
+
   Vec3d gravity{0, -9.81, 0};      // m/s²
   Vec3d body_force{0, 0, 0};       // m/s², a further uniform acceleration (a pressure gradient's stand-in)
   std::vector<FluidBlock> fluid_blocks;
@@ -136,6 +156,10 @@ inline void copy_live_parameters(const SimSpec& from, SimSpec& to) {
   to.dfsph_max_density_error = from.dfsph_max_density_error;
   to.dfsph_max_divergence_error = from.dfsph_max_divergence_error;
   to.dfsph_max_iterations = from.dfsph_max_iterations;
+  to.gas_damping = from.gas_damping;
+  to.gas_spring = from.gas_spring;
+  to.self_gravity = from.self_gravity;
+  to.gravity_theta = from.gravity_theta;
 }
 
 }  // namespace rtsph

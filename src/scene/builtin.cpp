@@ -19,6 +19,7 @@ constexpr std::pair<std::string_view, std::string_view> kDescriptions[] = {
     {"hydrostatic_2d", "Water at rest in a 1 m box: pressure should settle to ρgh (5,000 particles)"},
     {"nozzle_obstacle_2d", "A 2.5 m/s jet hitting a fixed circle in a 2 m tank (up to 8,000 particles)"},
     {"nozzle_moving_obstacle_2d", "The nozzle jet with the circle sweeping back and forth (up to 8,000 particles)"},
+    {"surface_tension_cube_3d", "A 0.15 m cube of water in zero gravity pulls itself into a sphere (surface tension, Akinci et al. 2013; 3,375 particles)"},
     {"validate_poiseuille_2d", "Poiseuille start-up (Morris et al. 1997): 1 mm channel, periodic in x, driven by a body force (160 particles)"},
 };
 

@@ -95,6 +95,18 @@ const std::vector<ParamInfo>& parameter_table() {
                                   .default_value = 1e-6,
                                   .help = "Kinematic viscosity ν (Morris et al. 1997). Water: 1e-6.",
                                   .live = true}),
+      field<&SimSpec::surface_tension>({.key = "fluid.surface_tension", .min = 0,
+                                        .max = 1e3, .default_value = 0,
+                                        .help = "Surface tension γ of Akinci, Akinci & Teschner 2013 "
+                                                "(cohesion plus curvature; 0 = off), in the paper's mixed units. Not the "
+                                                "physical σ: rtsph validate's static droplet "
+                                                "calibrates σ(γ) (docs/validation.md). Every method.",
+                                        .live = true}),
+      field<&SimSpec::adhesion>({.key = "fluid.adhesion", .min = 0, .max = 1e3,
+                                 .default_value = 0,
+                                 .help = "Adhesion β of Akinci et al. 2013: the fluid's pull "
+                                         "towards walls and obstacles (0 = off). Every method.",
+                                 .live = true}),
       field<&SimSpec::method>({.key = "solver.method", .default_text = "wcsph",
                                .choices = solver_methods(),
                                .help = "Solver method: wcsph (weakly compressible, small explicit steps), "

@@ -89,7 +89,7 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
   for (const auto& p : parameter_table())
     if (p.live) live.insert(p.key);
   EXPECT_EQ(live, (std::set<std::string>{"fluid.viscosity", "fluid.surface_tension", "fluid.adhesion",
-                                         "solver.artificial_viscosity",
+                                         "solver.artificial_viscosity", "solver.shifting",
                                          "solver.clamp_negative_pressure", "solver.time_step.mode",
                                          "solver.time_step.cfl", "solver.time_step.dt",
                                          "solver.time_step.max_dt", "gravity", "body_force",

@@ -146,6 +146,12 @@ const std::vector<ParamInfo>& parameter_table() {
                                                 .help = "Clamp pressure at 0 so the free surface "
                                                         "does not clump (tensile instability).",
                                                 .live = true}),
+      field<&SimSpec::shifting>({.key = "solver.shifting", .min = 0, .max = 10, .default_value = 0,
+                                 .help = "Particle shifting (Lind et al. 2012): each step moves particles "
+                                         "by -A h |v| dt grad C (Skillen et al. 2013) to keep their "
+                                         "arrangement uniform; 0 = off. WCSPH and DFSPH. No free-surface "
+                                         "treatment yet: for confined or periodic flows (Taylor-Green).",
+                                 .live = true}),
       field<&SimSpec::time_step_mode>({.key = "solver.time_step.mode", .default_text = "cfl",
                                        .choices = {"cfl", "fixed"},
                                        .help = "cfl: adaptive dt = cfl·h/(c0 + |v|max) (WCSPH) "

@@ -41,7 +41,7 @@ struct StepContext {
   // term (Morris et al. 1997). Derived from positions after every boundary sort.
   AlignedArray<Real> wall_normal[D];
   AlignedArray<Real> wall_depth;
-  AlignedArray<Real> surface_normal[D];  // Akinci 2013's nᵢ, only while surface forces are on
+  AlignedArray<Real> surface_normal[D];  // Akinci 2013's nᵢ (or the shift δrᵢ), only when on
   AlignedArray<Real> tmp;          // permutation scratch (boundary and method fields)
   typename FluidParticles<D>::Spare spare;  // double buffers for the fluid reorder
   std::size_t bytes() const {
@@ -218,6 +218,10 @@ class FluidWorld : public Simulation {
   /// fluid.surface_tension and fluid.adhesion are 0 (surface_tension.cpp).
   bool surface_forces_active() const { return spec_.surface_tension > 0 || spec_.adhesion > 0; }
   void add_surface_forces();
+  /// Particle shifting (Lind et al. 2012; D = A h |v| Δt, Skillen et al. 2013), A =
+  /// solver.shifting: moves each particle down its concentration gradient. Call right after
+  /// update_neighbours(), before the density. Nothing when A = 0 (shifting.cpp).
+  void shift_particles(double dt);
   PairArrays<D> pair_arrays() const {
     PairArrays<D> a;
     for (int k = 0; k < D; ++k) {

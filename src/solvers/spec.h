@@ -75,6 +75,7 @@ struct SimSpec {
   double smoothing_ratio = 1.0;    // h / spacing
   double artificial_viscosity = 0.02;  // Monaghan α (dimensionless)
   bool clamp_negative_pressure = true;  // avoids tensile clumping at the free surface
+  double shifting = 0;             // particle shifting A (Lind et al. 2012, D = A h |v| dt); 0 = off
   TimeStepMode time_step_mode = TimeStepMode::Cfl;
   double cfl = 0.4;                // CFL number for 0.4·h/(c0 + |v|max)
   double dt = 1e-4;                // s, fixed-step mode
@@ -117,6 +118,7 @@ inline void copy_live_parameters(const SimSpec& from, SimSpec& to) {
   to.adhesion = from.adhesion;
   to.artificial_viscosity = from.artificial_viscosity;
   to.clamp_negative_pressure = from.clamp_negative_pressure;
+  to.shifting = from.shifting;
   to.time_step_mode = from.time_step_mode;
   to.cfl = from.cfl;
   to.dt = from.dt;

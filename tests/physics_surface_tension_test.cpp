@@ -86,8 +86,9 @@ TEST_P(SurfaceTension, SquareRoundsTowardsACircleAndKeepsItsMomentum) {
   EXPECT_GT(sum_v, 0.1);  // it moved
   // WCSPH and DFSPH: round-off of exactly antisymmetric pair forces. PBF's velocities are float
   // position differences over Δt, which round on their own: with γ = 0 and a shear flow the
-  // same check drifts 5e-6 of Σ|v| (measured), with γ = 0.2 1.5e-5.
-  const double bound = GetParam() == "pbf" ? 1e-4 : 1e-5;
+  // same check drifts 5e-6 of Σ|v| (measured), with γ = 0.2 1.5e-5 (release build) and 6.9e-5
+  // (the ASan build, -O2 without -march=native: other roundings).
+  const double bound = GetParam() == "pbf" ? 3e-4 : 1e-5;
   EXPECT_LT(worst_p, bound * sum_v);
   EXPECT_EQ(sim->stats().particles_put_back, 0u);
 }

@@ -72,7 +72,8 @@ TEST(SceneParams, DefaultsInTheTablesAreTheStructDefaults) {
 
 TEST(SceneParams, TableHasTheSpecifiedKeys) {
   for (const char* key : {"name", "dimension", "domain.min", "domain.max", "domain.periodic", "fluid.spacing",
-                          "fluid.rest_density", "fluid.viscosity", "solver.method", "solver.eos",
+                          "fluid.rest_density", "fluid.viscosity", "fluid.surface_tension",
+                          "fluid.adhesion", "solver.method", "solver.eos",
                           "solver.speed_of_sound", "solver.stiffness", "solver.tait_gamma",
                           "solver.kernel", "solver.smoothing_ratio", "solver.artificial_viscosity",
                           "solver.clamp_negative_pressure", "solver.time_step.mode",
@@ -93,7 +94,8 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
   std::set<std::string> live;
   for (const auto& p : parameter_table())
     if (p.live) live.insert(p.key);
-  EXPECT_EQ(live, (std::set<std::string>{"fluid.viscosity", "solver.artificial_viscosity",
+  EXPECT_EQ(live, (std::set<std::string>{"fluid.viscosity", "fluid.surface_tension", "fluid.adhesion",
+                                         "solver.artificial_viscosity", "solver.shifting",
                                          "solver.clamp_negative_pressure", "solver.time_step.mode",
                                          "solver.time_step.cfl", "solver.time_step.dt",
                                          "solver.time_step.max_dt", "gravity", "body_force",

@@ -57,3 +57,33 @@ def test_the_cli_hands_over_to_python(cli, tmp_path):
     env["RTSPH_PYTHON"] = str(tmp_path / "no_python")
     r = subprocess.run([cli, "validate"], capture_output=True, text=True, env=env, timeout=60)
     assert r.returncode == 2 and "setup-python.sh" in r.stderr and r.stderr.count("\n") == 1
+
+
+# The droplet cases' measuring tools (rtsph.validate.cases): the lattice ball has the ball's
+# volume, and the Irving–Kirkwood pressure of the SPH pressure force reads the EOS pressure in a
+# uniform lattice (within the kernel sums' 2%), so the mechanical jump is measured on p's scale.
+@pytest.mark.parametrize("dim", [2, 3])
+def test_ball_blocks_fill_the_ball(dim):
+    import math
+    from rtsph.validate.cases import _ball_blocks
+    s, R = 0.005, 0.05
+    count = sum(round((b["max"][0] - b["min"][0]) / s) for b in _ball_blocks(dim, R, s))
+    volume = math.pi * R * R if dim == 2 else 4 / 3 * math.pi * R ** 3
+    assert abs(count * s ** dim / volume - 1) < 0.02
+    ellipse = sum(round((b["max"][0] - b["min"][0]) / s) for b in _ball_blocks(2, R, s, 1.1))
+    assert abs(ellipse * s * s / (math.pi * R * R) - 1) < 0.03  # semi-axes 1.1 R and R/1.1
+
+
+@pytest.mark.parametrize("dim", [2, 3])
+def test_virial_pressure_of_a_uniform_lattice_is_the_eos_pressure(dim):
+    import numpy as np
+    from rtsph.validate.cases import _virial_pressures
+    s, n = 0.005, 8
+    grid = np.stack(np.meshgrid(*[np.arange(-n, n) * s] * dim, indexing="ij"), -1).reshape(-1, dim)
+    inner = np.nonzero(np.linalg.norm(grid, axis=1) < 2 * s)[0]
+    rho, p = np.full(len(grid), 1000.0), np.full(len(grid), 100.0)
+    vp, vc = _virial_pressures(grid, rho, p, inner, s, 1000.0 * s ** dim, 1.0, dim)
+    assert abs(vp / 100.0 - 1) < 0.03
+    assert vc < 0  # cohesion is a tension in the bulk
+    vp0, vc0 = _virial_pressures(grid, rho, p, inner, s, 1000.0 * s ** dim, 0.0, dim)
+    assert vc0 == 0 and vp0 == vp

@@ -22,6 +22,7 @@ constexpr std::pair<std::string_view, std::string_view> kDescriptions[] = {
     {"toy_star_2d", "Toy star (Monaghan & Price 2004): polytropic gas in a linear force, code units, relaxing to ρ ∝ R² − r² (1,976 particles)"},
     {"polytrope_star_3d", "n = 1 polytrope under its own gravity, code units G = 1, relaxing to Lane–Emden (5,616 particles)"},
     {"colliding_stars_3d", "Two n = 1 polytropes on an off-centre collision course, G = 1, tree gravity (4,352 particles)"},
+    {"surface_tension_cube_3d", "A 0.15 m cube of water in zero gravity pulls itself into a sphere (surface tension, Akinci et al. 2013; 3,375 particles)"},
     {"validate_poiseuille_2d", "Poiseuille start-up (Morris et al. 1997): 1 mm channel, periodic in x, driven by a body force (160 particles)"},
 };
 

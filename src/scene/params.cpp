@@ -101,6 +101,18 @@ const std::vector<ParamInfo>& parameter_table() {
                                   .default_value = 1e-6,
                                   .help = "Kinematic viscosity ν (Morris et al. 1997). Water: 1e-6.",
                                   .live = true}),
+      field<&SimSpec::surface_tension>({.key = "fluid.surface_tension", .min = 0,
+                                        .max = 1e3, .default_value = 0,
+                                        .help = "Surface tension γ of Akinci, Akinci & Teschner 2013 "
+                                                "(cohesion plus curvature; 0 = off), in the paper's mixed units. Not the "
+                                                "physical σ: rtsph validate's static droplet "
+                                                "calibrates σ(γ) (docs/validation.md). Every method.",
+                                        .live = true}),
+      field<&SimSpec::adhesion>({.key = "fluid.adhesion", .min = 0, .max = 1e3,
+                                 .default_value = 0,
+                                 .help = "Adhesion β of Akinci et al. 2013: the fluid's pull "
+                                         "towards walls and obstacles (0 = off). Every method.",
+                                 .live = true}),
       field<&SimSpec::method>({.key = "solver.method", .default_text = "wcsph",
                                .choices = solver_methods(),
                                .help = "Solver method: wcsph (weakly compressible, small explicit steps), "
@@ -142,6 +154,12 @@ const std::vector<ParamInfo>& parameter_table() {
                                                 .help = "Clamp pressure at 0 so the free surface "
                                                         "does not clump (tensile instability).",
                                                 .live = true}),
+      field<&SimSpec::shifting>({.key = "solver.shifting", .min = 0, .max = 10, .default_value = 0,
+                                 .help = "Particle shifting (Lind et al. 2012): each step moves particles "
+                                         "by -A h |v| dt grad C (Skillen et al. 2013) to keep their "
+                                         "arrangement uniform; 0 = off. WCSPH and DFSPH. No free-surface "
+                                         "treatment yet: for confined or periodic flows (Taylor-Green).",
+                                 .live = true}),
       field<&SimSpec::time_step_mode>({.key = "solver.time_step.mode", .default_text = "cfl",
                                        .choices = {"cfl", "fixed"},
                                        .help = "cfl: adaptive dt = cfl·h/(c0 + |v|max) (WCSPH) "

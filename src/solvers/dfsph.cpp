@@ -47,6 +47,7 @@ void Dfsph<D>::step() {
     this->advance_scene(this->time_ + dt, dt);                    // obstacles, emitters
   }
   this->update_neighbours();                                      //                  (line 9)
+  this->shift_particles(dt);                                      // optional shifting
   {
     ScopedTimer timer(times_.density_s);
     this->compute_density();                                      //                  (line 10)

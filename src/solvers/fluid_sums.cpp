@@ -67,11 +67,13 @@ template <int D>
 void FluidWorld<D>::accelerations(const ForceTerms& t) {
   if (fluid_.size() == 0) return;
   const bool p = t.pressure != nullptr;
-  if (p && t.viscosity && t.external) return accelerations_impl<true, true, true>(t);
-  if (p && !t.viscosity && !t.external) return accelerations_impl<true, false, false>(t);
-  if (!p && t.viscosity && t.external) return accelerations_impl<false, true, true>(t);
-  if (!p && !t.viscosity && t.external) return accelerations_impl<false, false, true>(t);
-  throw std::logic_error("accelerations: unsupported combination of force terms");
+  if (p && t.viscosity && t.external) accelerations_impl<true, true, true>(t);
+  else if (p && !t.viscosity && !t.external) accelerations_impl<true, false, false>(t);
+  else if (!p && t.viscosity && t.external) accelerations_impl<false, true, true>(t);
+  else if (!p && !t.viscosity && t.external) accelerations_impl<false, false, true>(t);
+  else throw std::logic_error("accelerations: unsupported combination of force terms");
+  // Surface tension and adhesion are non-pressure forces: they come with the external ones.
+  if (t.external && surface_forces_active()) add_surface_forces();
 }
 
 template <int D>

@@ -41,12 +41,13 @@ struct StepContext {
   // term (Morris et al. 1997). Derived from positions after every boundary sort.
   AlignedArray<Real> wall_normal[D];
   AlignedArray<Real> wall_depth;
+  AlignedArray<Real> surface_normal[D];  // Akinci 2013's nᵢ (or the shift δrᵢ), only when on
   AlignedArray<Real> tmp;          // permutation scratch (boundary and method fields)
   typename FluidParticles<D>::Spare spare;  // double buffers for the fluid reorder
   std::size_t bytes() const {
     return fluid_grid.bytes() + boundary_grid.bytes() + p_over_rho2.bytes() + inv_rho.bytes() +
            boundary_p_over_rho2.bytes() + tmp.bytes() + spare.bytes() + fluid_list.bytes() +
-           wall_depth.bytes() * (D + 1);
+           wall_depth.bytes() * (D + 1) + surface_normal[0].bytes() * D;
   }
 };
 
@@ -214,7 +215,18 @@ class FluidWorld : public Simulation {
   void compute_inverse_density();        // ctx_.inv_rho for the viscosity terms
   void extrapolate_boundary_pressure();  // p_b from fluid_.p (Adami et al. 2012, eq. 27)
   /// aᵢ (fluid_.a) = pressure + viscosity + gravity + brush, as `terms` selects; one pair loop.
+  /// With `external` it also adds the surface forces (add_surface_forces) when they are on.
   void accelerations(const ForceTerms& terms);
+  /// Surface tension and adhesion (Akinci, Akinci & Teschner 2013), added to fluid_.a: the
+  /// surface normals in one pass, then cohesion, curvature and adhesion in a second. A
+  /// non-pressure force every method gets through accelerations(); nothing when
+  /// fluid.surface_tension and fluid.adhesion are 0 (surface_tension.cpp).
+  bool surface_forces_active() const { return spec_.surface_tension > 0 || spec_.adhesion > 0; }
+  void add_surface_forces();
+  /// Particle shifting (Lind et al. 2012; D = A h |v| Δt, Skillen et al. 2013), A =
+  /// solver.shifting: moves each particle down its concentration gradient. Call right after
+  /// update_neighbours(), before the density. Nothing when A = 0 (shifting.cpp).
+  void shift_particles(double dt);
   PairArrays<D> pair_arrays() const {
     PairArrays<D> a;
     for (int k = 0; k < D; ++k) {

@@ -67,6 +67,8 @@ struct SimSpec {
   double spacing = 0.02;           // m, initial particle spacing
   double rest_density = 1000.0;    // kg/m³
   double viscosity = 1e-6;         // m²/s, kinematic (Morris et al. 1997 laminar term)
+  double surface_tension = 0;      // Akinci et al. 2013's γ (cohesion + curvature); 0 = off
+  double adhesion = 0;             // Akinci et al. 2013's β (fluid to boundary); 0 = off
 
   // solver
   std::string method = "wcsph";
@@ -79,6 +81,7 @@ struct SimSpec {
   double smoothing_ratio = 1.0;    // h / spacing
   double artificial_viscosity = 0.02;  // Monaghan α (dimensionless)
   bool clamp_negative_pressure = true;  // avoids tensile clumping at the free surface
+  double shifting = 0;             // particle shifting A (Lind et al. 2012, D = A h |v| dt); 0 = off
   TimeStepMode time_step_mode = TimeStepMode::Cfl;
   double cfl = 0.4;                // CFL number for 0.4·h/(c0 + |v|max)
   double dt = 1e-4;                // s, fixed-step mode
@@ -133,8 +136,11 @@ struct SimSpec {
 /// (src/scene/params.cpp) name the same set; tests/scene_live_params_test.cpp holds them together.
 inline void copy_live_parameters(const SimSpec& from, SimSpec& to) {
   to.viscosity = from.viscosity;
+  to.surface_tension = from.surface_tension;
+  to.adhesion = from.adhesion;
   to.artificial_viscosity = from.artificial_viscosity;
   to.clamp_negative_pressure = from.clamp_negative_pressure;
+  to.shifting = from.shifting;
   to.time_step_mode = from.time_step_mode;
   to.cfl = from.cfl;
   to.dt = from.dt;

@@ -36,6 +36,7 @@ void Wcsph<D>::step() {
 template <int D>
 void Wcsph<D>::update_forces() {
   this->update_neighbours();
+  this->shift_particles(this->dt_);         // optional (solver.shifting), the last step's Δt
   {
     ScopedTimer timer(this->times_.density_s);
     this->compute_density();                // ρᵢ = Σⱼ mⱼ Wᵢⱼ + Σ_b Ψ_b W_ib (Akinci 2012, eq. 6)

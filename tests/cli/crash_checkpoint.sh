@@ -16,6 +16,18 @@ wait_for() {  # wait_for DIR GLOB N: until DIR holds at least N files matching G
   fail "nothing like $2 in $1 after 20 s"
 }
 
+replace_with_file() {  # replace_with_file DIR: DIR becomes a plain file, even if rtsph re-creates it
+  # rtsph creates a missing output directory before each write, so it can win the race between
+  # removing DIR and creating the file (the run then never fails, and the test hung under load):
+  # repeat until a plain file stands there.
+  for _ in $(seq 100); do
+    [ -f "$1" ] && return 0
+    rm -rf "$1" && touch "$1" 2>/dev/null
+    [ -f "$1" ] || sleep 0.02
+  done
+  fail "could not replace $1 with a file"
+}
+
 # 1. SIGKILL while checkpointing (3D: ~1.5 MB per checkpoint, one every few steps).
 for trial in 1 2 3 4; do
   d=kill$trial
@@ -48,7 +60,7 @@ mkdir -p "$TMPDIR"
 "$rtsph" run dam_break_2d --until 100 --threads 1 --export out --every 0.005 --quiet >/dev/null 2>err.txt &
 pid=$!
 wait_for out "frame_*" 5
-mv out out.gone && touch out
+mv out out.gone && replace_with_file out
 waitrc "$pid"
 [ "$rc" = 1 ] || fail "export failure: exit $rc, expected 1: $(cat err.txt)"
 grep -Eq "export failed: cannot [a-z ]+ 'out/" err.txt || fail "no clear message: $(cat err.txt)"
@@ -63,7 +75,7 @@ rm -f "$TMPDIR"/*
 "$rtsph" run dam_break_2d --until 100 --threads 1 --checkpoint-every 0.01 --checkpoint-dir ck --quiet >/dev/null 2>err.txt &
 pid=$!
 wait_for ck "ckpt_*.ckpt" 2
-rm -rf ck && touch ck
+replace_with_file ck
 waitrc "$pid"
 [ "$rc" = 1 ] || fail "checkpoint failure: exit $rc, expected 1: $(cat err.txt)"
 [ -f "$rescued" ] || fail "state not rescued: $(cat err.txt)"

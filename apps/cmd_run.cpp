@@ -37,7 +37,7 @@ struct RunOptions {
   std::string export_dir, format = "csv", attributes = "all", stats_json;
   double every = 0.02;
   // Surface formats (vdb, obj, ply-mesh); io::check_surface_options validates them.
-  double voxel_size = 0, surface_radius = 1, adaptivity = 0;
+  double voxel_size = std::numeric_limits<double>::quiet_NaN(), surface_radius = 1, adaptivity = 0;  // NaN: default
   bool quiet = false;
   // Checkpoints.
   double checkpoint_every = 0;  // simulated seconds; 0 = only at the end / on interruption
@@ -149,7 +149,10 @@ int run(const RunOptions& o) {
     eo.resume = resumed;
     eo.surface.spacing_m = spec.spacing;
     eo.surface.dimension = spec.dimension;
-    eo.surface.voxel_size_m = o.voxel_size;
+    if (!std::isnan(o.voxel_size) && !(o.voxel_size > 0)) {
+      throw std::invalid_argument(fmt::format("--voxel-size {}: must be a positive length in m", o.voxel_size));
+    }
+    eo.surface.voxel_size_m = std::isnan(o.voxel_size) ? 0 : o.voxel_size;
     eo.surface.radius_factor = o.surface_radius;
     eo.surface.adaptivity = o.adaptivity;
     eo.surface.threads = o.threads;
@@ -346,8 +349,7 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--format", o->format,
                   "Export format: particles (csv, vtk, ply) or the fluid surface (vdb: level set; obj, "
                   "ply-mesh: triangle mesh; 3D scenes only)");
-  cmd->add_option("--voxel-size", o->voxel_size, "Surface formats: level-set voxel edge in m (default: spacing/2)")
-      ->check(CLI::PositiveNumber);
+  cmd->add_option("--voxel-size", o->voxel_size, "Surface formats: level-set voxel edge in m (default: 0.4 x spacing)");
   cmd->add_option("--surface-radius", o->surface_radius,
                   "Surface formats: particle sphere radius as a multiple of the spacing (default 1)");
   cmd->add_option("--adaptivity", o->adaptivity,

@@ -36,6 +36,8 @@ struct RunOptions {
   std::vector<std::string> sets;
   std::string export_dir, format = "csv", attributes = "all", stats_json;
   double every = 0.02;
+  // Surface formats (vdb, obj, ply-mesh); io::check_surface_options validates them.
+  double voxel_size = std::numeric_limits<double>::quiet_NaN(), surface_radius = 1, adaptivity = 0;  // NaN: default
   bool quiet = false;
   // Checkpoints.
   double checkpoint_every = 0;  // simulated seconds; 0 = only at the end / on interruption
@@ -145,6 +147,15 @@ int run(const RunOptions& o) {
   if (!o.export_dir.empty()) {
     io::ExportOptions eo = io::parse_attributes(o.attributes);
     eo.resume = resumed;
+    eo.surface.spacing_m = spec.spacing;
+    eo.surface.dimension = spec.dimension;
+    if (!std::isnan(o.voxel_size) && !(o.voxel_size > 0)) {
+      throw std::invalid_argument(fmt::format("--voxel-size {}: must be a positive length in m", o.voxel_size));
+    }
+    eo.surface.voxel_size_m = std::isnan(o.voxel_size) ? 0 : o.voxel_size;
+    eo.surface.radius_factor = o.surface_radius;
+    eo.surface.adaptivity = o.adaptivity;
+    eo.surface.threads = o.threads;
     exporter = io::make_exporter(o.format, o.export_dir, eo);
     if (!resumed) exporter->write_frame(int(frame_slot), sim->time(), sim->fluid());
   }
@@ -335,7 +346,14 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--set", o->sets, "Override a scene parameter, e.g. --set fluid.spacing=0.01");
   cmd->add_option("--export", o->export_dir, "Write frames into this directory");
   cmd->add_option("--every", o->every, "Simulated seconds between exported frames")->check(CLI::PositiveNumber);
-  cmd->add_option("--format", o->format, "Export format: csv, vtk or ply");
+  cmd->add_option("--format", o->format,
+                  "Export format: particles (csv, vtk, ply) or the fluid surface (vdb: level set; obj, "
+                  "ply-mesh: triangle mesh; 3D scenes only)");
+  cmd->add_option("--voxel-size", o->voxel_size, "Surface formats: level-set voxel edge in m (default: 0.4 x spacing)");
+  cmd->add_option("--surface-radius", o->surface_radius,
+                  "Surface formats: particle sphere radius as a multiple of the spacing (default 1)");
+  cmd->add_option("--adaptivity", o->adaptivity,
+                  "obj, ply-mesh: mesh adaptivity from 0 (uniform, default) to 1 (fewest triangles)");
   cmd->add_option("--attributes", o->attributes, "Exported arrays: all or a list of position,velocity,density,pressure,id");
   cmd->add_option("--stats-json", o->stats_json, "Write the summary as JSON to this file");
   cmd->add_flag("--quiet", o->quiet, "No progress output; with --stats-json the summary goes only to that file");

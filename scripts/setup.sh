@@ -10,7 +10,10 @@ preset="${1:-release}"
 pkgs=(build-essential cmake ninja-build pkg-config libepoxy-dev libegl-dev libgl1-mesa-dri
       libegl-mesa0 libglfw3-dev libglm-dev libimgui-dev libstb-dev xvfb xauth
       nlohmann-json3-dev libcli11-dev libgtest-dev libbenchmark-dev libfmt-dev ffmpeg
-      glslang-tools ccache mesa-utils python3-venv python3-dev)
+      glslang-tools ccache mesa-utils python3-venv python3-dev
+      libopenvdb-dev libboost-iostreams-dev)
+# libopenvdb-dev brings TBB, Blosc and Imath; Debian's FindOpenVDB.cmake also requires
+# Boost.Iostreams (delayed loading), which the package does not depend on.
 missing=()
 for p in "${pkgs[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q 'install ok installed' || missing+=("$p")

@@ -54,7 +54,7 @@ struct Tiny {
 };
 
 TEST(ExporterRegistry, ListsFormats) {
-  EXPECT_EQ(exporter_formats(), (std::vector<std::string>{"csv", "vtk", "ply"}));
+  EXPECT_EQ(exporter_formats(), (std::vector<std::string>{"csv", "vtk", "ply", "vdb", "obj", "ply-mesh"}));
 }
 
 TEST_F(ExporterTest, UnknownFormatNamesTheValidOnes) {
@@ -62,7 +62,7 @@ TEST_F(ExporterTest, UnknownFormatNamesTheValidOnes) {
     make_exporter("xyz", dir_);
     FAIL() << "no error";
   } catch (const IoError& e) {
-    EXPECT_STREQ(e.what(), "unknown output format 'xyz' (valid: csv, vtk, ply)");
+    EXPECT_STREQ(e.what(), "unknown output format 'xyz' (valid: csv, vtk, ply, vdb, obj, ply-mesh)");
   }
 }
 

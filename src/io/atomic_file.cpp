@@ -141,6 +141,26 @@ void write_file_atomic(const fs::path& path, std::string_view bytes) {
   write_file_atomic(path, [&](std::ostream& os) { os.write(bytes.data(), static_cast<std::streamsize>(bytes.size())); });
 }
 
+void write_file_atomic_via_path(const fs::path& path, const std::function<void(const fs::path&)>& body) {
+  if (!path.has_filename()) throw IoError(fmt::format("cannot write '{}': not a file name", path.string()));
+  const fs::path dir = path.has_parent_path() ? path.parent_path() : fs::path(".");
+  TempFile tmp(dir / fmt::format(".{}.tmp.{}", path.filename().string(), ::getpid()));
+  // Created (and closed) first: proves the directory is writable, and the destructor removes
+  // whatever `body` leaves there if it throws.
+  if (int err = tmp.open()) fail("write", path, err);
+  if (int err = tmp.close()) fail("write", path, err);
+  body(tmp.path());
+  // The library closed its own descriptor; reopen to fsync what it wrote.
+  const int fd = ::open(tmp.path().c_str(), O_RDONLY | O_CLOEXEC);
+  if (fd < 0) fail("write", path, errno);
+  const int err = ::fsync(fd) < 0 ? errno : 0;
+  ::close(fd);
+  if (err) fail("write", path, err);
+  if (::rename(tmp.path().c_str(), path.c_str()) < 0) fail("replace", path, errno);
+  tmp.committed();
+  sync_directory(dir, path);
+}
+
 void ensure_directory(const fs::path& dir) {
   std::error_code ec;
   fs::create_directories(dir, ec);

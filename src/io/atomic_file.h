@@ -20,6 +20,12 @@ void write_file_atomic(const std::filesystem::path& path,
 /// The same for content already in memory.
 void write_file_atomic(const std::filesystem::path& path, std::string_view bytes);
 
+/// The same for a library that writes only to a path it opens itself (OpenVDB's io::File):
+/// `body` writes the temporary file named by its argument, which is then fsynced and renamed
+/// over `path` as above.
+void write_file_atomic_via_path(const std::filesystem::path& path,
+                                const std::function<void(const std::filesystem::path&)>& body);
+
 /// Creates `dir` and its parents if missing; throws IoError if that fails or `dir` exists but
 /// is not a directory.
 void ensure_directory(const std::filesystem::path& dir);

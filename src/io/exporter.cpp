@@ -14,12 +14,16 @@ namespace {
 struct ExporterEntry {
   std::string_view name;
   std::unique_ptr<Exporter> (*make)(const std::filesystem::path&, const ExportOptions&);
+  bool surface;
 };
 
 constexpr ExporterEntry kExporters[] = {
-    {"csv", make_csv_exporter},
-    {"vtk", make_vtk_exporter},
-    {"ply", make_ply_exporter},
+    {"csv", make_csv_exporter, false},
+    {"vtk", make_vtk_exporter, false},
+    {"ply", make_ply_exporter, false},
+    {"vdb", make_vdb_exporter, true},
+    {"obj", make_obj_exporter, true},
+    {"ply-mesh", make_ply_mesh_exporter, true},
 };
 
 constexpr std::string_view kAttributes[] = {"position", "velocity", "density", "pressure", "id"};
@@ -66,10 +70,17 @@ std::vector<std::string> exporter_formats() {
   return names;
 }
 
+bool is_surface_format(std::string_view format) {
+  for (const auto& e : kExporters)
+    if (e.name == format) return e.surface;
+  return false;
+}
+
 std::unique_ptr<Exporter> make_exporter(const std::string& format, const std::filesystem::path& dir,
                                         const ExportOptions& options) {
   for (const auto& e : kExporters) {
     if (e.name == format) {
+      if (e.surface) check_surface_options(format, options.surface);
       ensure_directory(dir);
       return e.make(dir, options);
     }

@@ -1,6 +1,7 @@
 #pragma once
-// Per-frame particle output in interchange formats, chosen by name ("csv", "vtk", "ply"). Every
-// exporter also keeps DIR/index.csv (frame,time_s,file) listing exactly the frames whose files
+// Per-frame output in interchange formats, chosen by name: particles ("csv", "vtk", "ply") or
+// the fluid's surface ("vdb" level set, "obj" and "ply-mesh" triangle meshes). Every exporter
+// also keeps DIR/index.csv (frame,time_s,file) listing exactly the frames whose files
 // are complete, rewritten atomically after each frame.
 #include <filesystem>
 #include <memory>
@@ -10,6 +11,7 @@
 
 #include "core/particles.h"
 #include "io/errors.h"
+#include "io/surface.h"
 
 namespace rtsph::io {
 
@@ -19,6 +21,8 @@ struct ExportOptions {
   /// Keep the frames already listed in DIR/index.csv (a run resumed from a checkpoint); frames
   /// at or after the first one written again are dropped from the index.
   bool resume = false;
+  /// The surface formats' settings (spacing and dimension from the scene; the rest from flags).
+  SurfaceOptions surface;
 };
 
 /// Parses an `--attributes` list such as "position,velocity,id" (order and repeats do not
@@ -35,9 +39,12 @@ class Exporter {
 };
 
 /// Creates `dir` if needed. Throws IoError for an unknown format (listing the valid ones) or
-/// a directory that cannot be created.
+/// a directory that cannot be created, std::invalid_argument for surface options that format
+/// cannot use (check_surface_options).
 std::unique_ptr<Exporter> make_exporter(const std::string& format, const std::filesystem::path& dir,
                                         const ExportOptions& options = {});
 std::vector<std::string> exporter_formats();
+/// True for the formats that write the surface rather than the particles.
+bool is_surface_format(std::string_view format);
 
 }  // namespace rtsph::io

@@ -180,7 +180,14 @@ std::string export_frame(PySimulation& self, const std::string& dir, const std::
   Lock lock(checked(self).mutex);
   const std::string key = format + "\n" + std::filesystem::absolute(dir).lexically_normal().string();
   auto& exporter = self.exporters[key];
-  if (!exporter) exporter = io::make_exporter(format, dir, io::parse_attributes(attributes));
+  if (!exporter) {
+    io::ExportOptions eo = io::parse_attributes(attributes);
+    // The surface formats (vdb, obj, ply-mesh) size their voxels from the scene, as `rtsph run` does.
+    eo.surface.spacing_m = self.sim->spec().spacing;
+    eo.surface.dimension = self.sim->spec().dimension;
+    eo.surface.threads = self.threads;
+    exporter = io::make_exporter(format, dir, eo);
+  }
   const int frame = self.next_frame[key]++;
   exporter->write_frame(frame, self.sim->time(), self.sim->fluid());
   // The format picks the extension (vtk writes .vtp); report the file that was written.

@@ -82,3 +82,18 @@ def test_render_returns_a_picture_of_the_water(tank, tmp_path):
     surface = rtsph.render(sim, size=(160, 120))
     assert surface.shape == img.shape and len(np.unique(surface.reshape(-1, 4), axis=0)) > 2
     assert not np.array_equal(surface, img)
+
+
+def test_export_surface_mesh_from_python(dam3d, tmp_path):
+    # The surface formats take their voxel size from the scene's spacing, as `rtsph run` does: the
+    # OBJ of the resting column is a closed mesh around the fluid's bounding box.
+    sim = rtsph.Simulation(dam3d, threads=1)
+    path = sim.export(tmp_path / "mesh", format="obj")
+    assert path.endswith("frame_000000.obj")
+    verts = np.array([[float(t) for t in line.split()[1:4]] for line in open(path) if line.startswith("v ")])
+    assert len(verts) > 100
+    lo, hi = sim.positions.min(axis=0), sim.positions.max(axis=0)
+    spacing = dam3d.to_dict()["fluid"]["spacing"]
+    assert np.all(verts.min(axis=0) > lo - 1.5 * spacing) and np.all(verts.max(axis=0) < hi + 1.5 * spacing)
+    with pytest.raises(ValueError, match="3D only"):  # one line, as the CLI's refusal
+        rtsph.Simulation(rtsph.scene("dam_break_2d", {"fluid.spacing": 0.1}), threads=1).export(tmp_path / "m2", format="obj")

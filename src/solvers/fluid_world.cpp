@@ -36,6 +36,13 @@ FluidWorld<D>::FluidWorld(const SimSpec& spec, int threads) : spec_(spec), pool_
   }
   build_boundary();
   sort_fluid_by_cell();
+  // The transport-velocity formulation's ṽ − v travels with its particle from the step that
+  // moved it to the force sum after (transport_velocity.cpp), so it is sorted and saved.
+  if (spec_.transport_velocity > 0) {
+    const char* axis[3] = {"x", "y", "z"};
+    for (int k = 0; k < D; ++k)  // zero at the start (resize zero-fills)
+      add_method_field({std::string("transport_dv.") + axis[k], &transport_dv_[k], true, true});
+  }
 }
 
 template <int D>

@@ -253,9 +253,18 @@ def poiseuille(method: str, level: str, threads: int) -> Result:
 
 
 # --- Taylor–Green vortex, Re = 100 ------------------------------------------------------------
-# solver.shifting for Taylor–Green: 0 (off, the default) unless RTSPH_VALIDATE_SHIFTING sets A
-# (docs/validation.md: A = 2 and 6 measured; neither reaches the tolerance).
+# The transport-velocity formulation (Adami, Hu & Adams 2013; solver.transport_velocity = 1, their
+# and PySPH's background pressure p_b = ρ0 c0²) keeps the particle arrangement uniform where the
+# vortex strains it; without it the lattice disorders within 0.2 s and the disorder dissipates
+# the vortex 2.6-4x too fast (docs/validation.md). The kernel is Wendland C2 with h = 2 spacings
+# (about 50 neighbours in 2D): Wendland kernels have no pairing instability (Dehnen & Aly 2012),
+# and the cubic spline at h = spacing (12 neighbours) with TVF still lost a third of the
+# amplitude in the first 0.3 s. RTSPH_VALIDATE_SHIFTING sets particle shifting A (off; measured).
 TG_SHIFTING = float(__import__("os").environ.get("RTSPH_VALIDATE_SHIFTING", "0"))
+TG_TRANSPORT_VELOCITY = 1.0
+TG_KERNEL, TG_H = "wendland_c2", 2.0
+TG_N = {"quick": 80, "full": 100}
+TG_CONVERGENCE_N = (40, 80, 160)
 
 
 def _taylor_green_run(method, n, threads):
@@ -267,7 +276,8 @@ def _taylor_green_run(method, n, threads):
         "fluid": {"spacing": s, "viscosity": U * L / Re},
         # Negative pressures carry the vortex's low-pressure cores: no clamping.
         "solver": {"method": method, "artificial_viscosity": 0, "speed_of_sound": 10 * U,
-                   "clamp_negative_pressure": False, "shifting": TG_SHIFTING},
+                   "clamp_negative_pressure": False, "shifting": TG_SHIFTING,
+                   "transport_velocity": TG_TRANSPORT_VELOCITY, "kernel": TG_KERNEL, "smoothing_ratio": TG_H},
         "fluid_blocks": [{"min": [0, 0], "max": [L, L]}]})
     sim = rtsph.Simulation(scene, threads=threads)
     x = sim.positions.astype(np.float64)
@@ -289,21 +299,23 @@ def _taylor_green_run(method, n, threads):
 def taylor_green(method: str, level: str, threads: int) -> Result:
     r = Result(case="taylor_green_2d", method=method, metric="relative error of the amplitude's decay rate over t ∈ [0, 1] s",
                tolerance=0.05, reference="exact decay exp(−8π² t/Re) of the velocity amplitude",
-               setup="1 m periodic square, U = 1 m/s, Re = 100, c0 = 10 U, no artificial viscosity")
+               setup=(f"1 m periodic square, U = 1 m/s, Re = 100, c0 = 10 U, no artificial viscosity, "
+                      f"transport velocity p_b = {TG_TRANSPORT_VELOCITY:g} ρ0 c0², {TG_KERNEL} h = {TG_H:g} spacings"))
     if method == "pbf":
         r.applicable, r.notes = False, NO_LAMINAR_VISCOSITY
         return r
-    n = {"quick": 30, "full": 50}[level]
+    n = TG_N[level]
     t0 = time.perf_counter()
     sim, T, A, rate, exact = _taylor_green_run(method, n, threads)
     r.error, r.particles, r.wall_s = abs(rate / exact - 1), sim.particle_count, time.perf_counter() - t0
     r.setup += f", {n}×{n} particles"
     r.series = {"t_s": T, "amplitude_ms": A, "exact_ms": [math.exp(-exact * t) for t in T]}
     r.extra = {"decay_rate": rate, "exact_rate": exact}
-    r.notes = (f"Particle shifting (solver.shifting, Lind 2012) A = {TG_SHIFTING:g}; no transport-velocity "
-               "correction yet (Adami 2013): the lattice disorders as it turns, which adds dissipation.")
+    r.notes = (f"Transport-velocity formulation (Adami et al. 2013) with its momentum correction; particle "
+               f"shifting A = {TG_SHIFTING:g}. The run starts at p = 0 (the lattice's density), not at the "
+               "vortex's pressure field.")
     if level == "full":
-        for k in (25, 50, 100):
+        for k in TG_CONVERGENCE_N:
             _, _, _, rt, ex = _taylor_green_run(method, k, threads)
             r.convergence.append((1.0 / k, abs(rt / ex - 1)))
 

@@ -160,6 +160,12 @@ const std::vector<ParamInfo>& parameter_table() {
                                          "arrangement uniform; 0 = off. WCSPH and DFSPH. No free-surface "
                                          "treatment yet: for confined or periodic flows (Taylor-Green).",
                                  .live = true}),
+      field<&SimSpec::hydrostatic_start>({.key = "fluid.hydrostatic_start", .default_value = 0,
+                                          .help = "WCSPH: start each fluid block compressed along gravity to the "
+                                                  "density its equation of state gives the hydrostatic pressure "
+                                                  "rho0 g depth (depth below the block's top), so water at rest "
+                                                  "starts at rest instead of settling with a slosh. "
+                                                  "Other methods keep rho0 and ignore it."}),
       field<&SimSpec::transport_velocity>({.key = "solver.transport_velocity", .min = 0, .max = 10,
                                            .default_value = 0,
                                            .help = "Transport-velocity formulation (Adami, Hu & Adams 2013): "

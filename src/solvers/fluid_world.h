@@ -227,6 +227,11 @@ class FluidWorld : public Simulation {
   /// solver.shifting: moves each particle down its concentration gradient. Call right after
   /// update_neighbours(), before the density. Nothing when A = 0 (shifting.cpp).
   void shift_particles(double dt);
+  /// With fluid.hydrostatic_start (a weakly compressible method's constructor calls it, before
+  /// its first neighbour update): moves each particle of a fluid block along gravity so the
+  /// block's lattice is compressed to the density ρ(d) its equation of state gives the
+  /// hydrostatic pressure ρ0 g d, d the depth below the block's top.
+  void compress_hydrostatically();
   /// Transport-velocity formulation (Adami, Hu & Adams 2013): moves each particle by
   /// Δt_drift·Δt_kick·a_b, the acceleration of a uniform background pressure p_b =
   /// solver.transport_velocity·ρ0c0², which keeps the arrangement uniform. Call just before

@@ -9,6 +9,7 @@ namespace rtsph {
 
 template <int D>
 Wcsph<D>::Wcsph(const SimSpec& spec, int threads) : W(spec, threads) {
+  this->compress_hydrostatically();  // optional (fluid.hydrostatic_start); update_forces sorts
   update_forces();
   this->reset_stage_times();
 }

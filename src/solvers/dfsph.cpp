@@ -13,6 +13,7 @@ template <int D>
 Dfsph<D>::Dfsph(const SimSpec& spec, int threads) : W(spec, threads) {
   // Several sums per step over one neighbourhood: walk lists, not the grid.
   this->keep_neighbour_lists();
+  relax_ = jacobi_relaxation();
   // Derived after each neighbour update (saved, so a resumed step needs no recompute).
   this->add_method_field({"factor", &factor_, false, true});
   this->add_method_field({"neighbours", &neighbours_, false, true});

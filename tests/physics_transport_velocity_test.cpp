@@ -7,9 +7,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 #include <vector>
 
+#include "io/checkpoint.h"
+#include "state_compare.h"
 #include "test_scenes.h"
 
 namespace rtsph {
@@ -111,6 +114,26 @@ TEST(TransportVelocity, BitwiseIdenticalFor1And2ThreadsAndActs) {
   };
   EXPECT_TRUE(positions(*one) == positions(*two));
   EXPECT_FALSE(positions(*one) == positions(*ref));
+}
+
+// ṽ − v (the transport_dv.* method fields) travels in checkpoints: a resumed run continues bitwise
+// as the straight one. DFSPH at a small p_b (at ρ0c0² its CFL step overshoots, docs/validation.md).
+TEST(TransportVelocity, CheckpointResumesBitwise) {
+  for (const char* method : {"wcsph", "dfsph"}) {
+    SCOPED_TRACE(method);
+    SimSpec s = taylor_green(30, std::string(method) == "wcsph" ? 1.0 : 0.01);
+    s.method = method;
+    auto first = make_simulation(s, 2);
+    set_vortex(*first);
+    for (int i = 0; i < 30; ++i) first->step();
+    const auto file = std::filesystem::temp_directory_path() / (std::string("rtsph_tvf_") + method + ".ckpt");
+    io::write_checkpoint(file, *first, 42);
+    auto resumed = make_simulation(s, 2);
+    io::read_checkpoint(file, *resumed, 42);
+    for (int i = 0; i < 30; ++i) { first->step(); resumed->step(); }
+    test::expect_same_state(*first, *resumed);
+    std::filesystem::remove(file);
+  }
 }
 
 // fluid.hydrostatic_start: a WCSPH tank starts with the pressure ρ0 g (H − y) below its surface

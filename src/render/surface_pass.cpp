@@ -19,7 +19,7 @@ void bind_texture(int unit, GLuint tex) {
 }  // namespace
 
 SurfacePass::SurfacePass()
-    : splat_({"particle.vert", "surface_splat.frag"}),
+    : splat_({"surface_splat.vert", "surface_splat.frag"}),
       smooth_({"surface_quad.vert", "surface_smooth.frag"}),
       normal_({"surface_quad.vert", "surface_normal.frag"}),
       shade_({"surface_quad.vert", "surface_shade.frag"}),
@@ -58,6 +58,8 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   const int w = std::max(8, static_cast<int>(std::lround(f.width * scale)));
   const int h = std::max(8, static_cast<int>(std::lround(f.height * scale)));
   const float r = s.particle_radius;
+  times_.width = w;
+  times_.height = h;
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
   if (f.points) glEnable(GL_PROGRAM_POINT_SIZE);
@@ -80,14 +82,9 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   glUniformMatrix4fv(splat_.loc("u_proj"), 1, GL_FALSE, f.proj.data());
   glUniform1f(splat_.loc("u_radius"), 2 * r);  // the thickness splat, one spacing wide
   glUniform1f(splat_.loc("u_sphere"), kDepthSplat * r);
-  glUniform1i(splat_.loc("u_dim"), 3);
-  glUniform1i(splat_.loc("u_ortho"), 0);
-  glUniform1i(splat_.loc("u_color_mode"), 0);
   glUniform1i(splat_.loc("u_points"), f.points ? 1 : 0);
   glUniform1f(splat_.loc("u_viewport_h"), static_cast<float>(h));
-  glUniform4f(splat_.loc("u_viewport"), 0, 0, static_cast<float>(w), static_cast<float>(h));
   glUniform1i(splat_.loc("u_scene_depth"), 1);
-  glUniform1i(splat_.loc("u_lut"), 0);
   f.draw_fluid();
   glDisablei(GL_BLEND, 0);
   glDisablei(GL_BLEND, 1);

@@ -27,6 +27,7 @@ namespace rtsph::render {
 struct SurfacePassTimes {
   double scene_s = 0, splat_s = 0, smooth_s = 0, normal_s = 0, shade_s = 0;
   long frames = 0;
+  int width = 0, height = 0;  // the fluid passes' resolution in the last frame
 };
 
 /// What the surface needs of the frame; draw_fluid issues the fluid particles' draw call with

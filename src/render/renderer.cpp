@@ -166,7 +166,9 @@ void Renderer::upload(const ParticleView& f, const BoundaryView* b) {
 
   upload_boundary(b);
 
-  if (!have_domain_ && n > 0) {
+  // The fluid's bounds: the surface passes work only where its projection falls.
+  fluid_box_ = n > 0;
+  if (n > 0) {
     Vec3f lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(), 0};
     Vec3f hi{std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest(), 0};
     for (std::size_t i = 0; i < n; ++i) {
@@ -181,8 +183,14 @@ void Renderer::upload(const ParticleView& f, const BoundaryView* b) {
         hi.z = std::max(hi.z, f.x[2][i]);
       }
     }
-    lo_ = lo;
-    hi_ = hi;
+    fluid_lo_ = lo;
+    fluid_hi_ = hi;
+    // Positions that are not finite (a blown-up run) leave no usable box.
+    for (float v : {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}) fluid_box_ = fluid_box_ && std::isfinite(v);
+    if (!have_domain_) {
+      lo_ = lo;
+      hi_ = hi;
+    }
   }
 }
 
@@ -465,31 +473,43 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
   const Vec3f size = hi_ - lo_;
   const float extent = std::max({size.x, size.y, three ? size.z : 0.0f, 1e-3f});
 
-  // Ground grid (3D: the floor plane, 2D: behind the particles) and, in 2D, the walls.
+  // What the fluid lies in front of: the ground grid (3D: the floor plane, 2D: behind the
+  // particles), in 2D the walls, the obstacle solids; with the 3D surface also the container's
+  // far faces, which lie behind the water and are part of the refracted scene.
   std::vector<LineVertex> lv;
   if (s.grid) build_grid_lines(dim_, lo_, hi_, &lv);
-  if (!lv.empty()) {
-    glDepthMask(GL_FALSE);
-    draw_lines(lv, GL_LINES, vp);
-    glDepthMask(GL_TRUE);
-    ++st.draw_calls;
+  auto draw_opaque = [&] {
+    glEnable(GL_BLEND);
+    if (!lv.empty()) {
+      glDepthMask(GL_FALSE);
+      draw_lines(lv, GL_LINES, vp);
+      glDepthMask(GL_TRUE);
+      ++st.draw_calls;
+    }
+    if (!three && s.walls) {
+      // 2D walls: a translucent band around the domain.
+      std::vector<LineVertex> tri;
+      build_walls_2d(lo_, hi_, std::max(2.0f * s.particle_radius, 0.01f * extent), &tri);
+      draw_lines(tri, GL_TRIANGLES, vp);
+      ++st.draw_calls;
+    }
+    glDisable(GL_BLEND);  // solids and particles are opaque; blending costs a read per fragment
+    // Obstacle solids before the particles: in 2D (no depth test) the fluid lies on top of
+    // them; in 3D both write their true depth, so the order does not matter.
+    if (s.display != DisplayMode::Fluid && solids_.draw(dim_, view, proj, cam.dim == 2, s.obstacle))
+      ++st.draw_calls;
+    if (surface && three && s.walls) draw_container(cam, vp, true, false, &st);
+  };
+  draw_opaque();
+  if (surface && three) {
+    // The opaque scene went to the surface's texture (what the water refracts); drawn again
+    // into the target, the shading pass needs to touch only the pixels around the water.
+    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target_fbo));
+    glViewport(0, 0, width, height);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    draw_opaque();
   }
-  if (!three && s.walls) {
-    // 2D walls: a translucent band around the domain.
-    std::vector<LineVertex> tri;
-    build_walls_2d(lo_, hi_, std::max(2.0f * s.particle_radius, 0.01f * extent), &tri);
-    draw_lines(tri, GL_TRIANGLES, vp);
-    ++st.draw_calls;
-  }
-
-  glDisable(GL_BLEND);  // solids and particles are opaque; blending costs a read per fragment
-  // Obstacle solids before the particles: in 2D (no depth test) the fluid lies on top of them;
-  // in 3D both write their true depth, so the order does not matter.
-  if (s.display != DisplayMode::Fluid && solids_.draw(dim_, view, proj, cam.dim == 2, s.obstacle))
-    ++st.draw_calls;
   if (surface) {
-    // The container's far faces lie behind the water: part of the refracted scene.
-    if (three && s.walls) draw_container(cam, vp, true, false, &st);
     st.draw_calls += draw_surface(cam, view, proj, width, height, GLuint(target_fbo), s);
     st.particles_drawn += fluid_n_;
   }

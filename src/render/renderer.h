@@ -9,6 +9,7 @@
 // (2D, filled contour), from the same vertex buffer (renderer_surface.cpp).
 #include <epoxy/gl.h>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <utility>
@@ -99,6 +100,8 @@ class Renderer {
   void draw_particles(GLuint vao, std::size_t first, std::size_t count, bool points);
   bool use_points(const Camera& cam, int height, const RenderSettings& s) const;
   void draw_container(const Camera& cam, const Mat4& vp, bool faces, bool edges, DrawStats* st);
+  std::array<int, 4> screen_box(const Mat4& view, const Mat4& proj, int width, int height,
+                                float grow) const;
   /// The fluid in the surface style (renderer_surface.cpp); leaves target_fbo bound.
   int draw_surface(const Camera& cam, const Mat4& view, const Mat4& proj, int width, int height,
                    GLuint target_fbo, const RenderSettings& s);
@@ -117,6 +120,8 @@ class Renderer {
   int dim_ = 3;
   bool have_domain_ = false;
   Vec3f lo_{0, 0, 0}, hi_{1, 1, 1};
+  bool fluid_box_ = false;  // fluid_lo_/hi_ bound the uploaded fluid (not the device's)
+  Vec3f fluid_lo_{0, 0, 0}, fluid_hi_{0, 0, 0};
   float max_point_size_ = 1;
   float max_speed_ = 0, p_min_ = 0, p_max_ = 0, rho_min_ = 0, rho_max_ = 0;
   std::vector<float> scratch_;

@@ -8,10 +8,13 @@
 //              soft additive splats summing to the depth of water along each ray;
 //   smooth     a separable bilateral filter of the depth, x then y, radius ∝ screen size;
 //   normal     normals from the smoothed depth, stored with it;
-//   shade      full resolution into the target: Fresnel mix of a sky gradient and the
-//              refracted scene, Beer–Lambert absorption, highlight, spray; writes depth so
-//              later geometry (walls, boundary particles) sorts with it.
-// The fluid passes run at RenderSettings::surface_scale of the frame's resolution.
+//   shade      full resolution into the target (which holds the opaque scene), where there is
+//              water: Fresnel mix of a sky gradient and the refracted scene, Beer–Lambert
+//              absorption, highlight, spray; writes depth so later geometry (walls, boundary
+//              particles) sorts with it.
+// The fluid passes run at RenderSettings::surface_scale of the frame's resolution; the passes
+// after the splats only inside the screen rectangle of the fluid's bounding box (scissor).
+#include <array>
 #include <functional>
 
 #include "render/math.h"
@@ -38,6 +41,10 @@ struct SurfaceFrame {
   GLuint target_fbo = 0;
   bool points = true;             // particles go out as point sprites
   std::function<void()> draw_fluid;
+  // Target pixels (x0, y0, x1, y1) outside which there is no water: the passes after the splats
+  // skip the rest. The target already holds the opaque scene (the shading pass draws only
+  // where there is water).
+  std::array<int, 4> box{0, 0, 1 << 30, 1 << 30};
 };
 
 class SurfacePass {

@@ -44,6 +44,8 @@ Renderer::Renderer()
   glGenVertexArrays(1, &boundary_vao_);
   glGenVertexArrays(1, &line_vao_);
   glGenVertexArrays(1, &overlay_vao_);
+  glGenVertexArrays(1, &splat_vao_);
+  glGenBuffers(1, &splat_vbo_);
   glGenBuffers(1, &fluid_vbo_);
   glGenBuffers(1, &boundary_vbo_);
   glGenBuffers(1, &line_vbo_);
@@ -81,6 +83,8 @@ Renderer::~Renderer() {
   GLuint vbos[] = {fluid_vbo_, boundary_vbo_, line_vbo_, overlay_vbo_};
   glDeleteVertexArrays(4, vaos);
   glDeleteBuffers(4, vbos);
+  glDeleteVertexArrays(1, &splat_vao_);
+  glDeleteBuffers(1, &splat_vbo_);
   glDeleteTextures(1, &lut_tex_);
 }
 
@@ -185,6 +189,13 @@ void Renderer::upload(const ParticleView& f, const BoundaryView* b) {
     }
     fluid_lo_ = lo;
     fluid_hi_ = hi;
+    if (f.dim == 3 && f.x[2]) {
+      positions_.resize(3 * n);
+      for (int k = 0; k < 3; ++k) std::memcpy(positions_.data() + k * n, f.x[k], n * sizeof(float));
+      splats_stale_ = true;
+    } else {
+      positions_.clear();
+    }
     // Positions that are not finite (a blown-up run) leave no usable box.
     for (float v : {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}) fluid_box_ = fluid_box_ && std::isfinite(v);
     if (!have_domain_) {

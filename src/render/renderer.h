@@ -22,6 +22,7 @@
 #include "render/scene_lines.h"
 #include "render/shader.h"
 #include "render/solids.h"
+#include "render/splat_batch.h"
 #include "render/surface2d_pass.h"
 #include "render/surface_pass.h"
 
@@ -100,6 +101,8 @@ class Renderer {
   void draw_particles(GLuint vao, std::size_t first, std::size_t count, bool points);
   bool use_points(const Camera& cam, int height, const RenderSettings& s) const;
   void draw_container(const Camera& cam, const Mat4& vp, bool faces, bool edges, DrawStats* st);
+  /// Brings the splat buffer up to date; false when there is none (the device's fluid).
+  bool update_splats(float spacing);
   std::array<int, 4> screen_box(const Mat4& view, const Mat4& proj, int width, int height,
                                 float grow) const;
   /// The fluid in the surface style (renderer_surface.cpp); leaves target_fbo bound.
@@ -122,6 +125,13 @@ class Renderer {
   Vec3f lo_{0, 0, 0}, hi_{1, 1, 1};
   bool fluid_box_ = false;  // fluid_lo_/hi_ bound the uploaded fluid (not the device's)
   Vec3f fluid_lo_{0, 0, 0}, fluid_hi_{0, 0, 0};
+  // The 3D surface's splats (splat_batch.h), built from a copy of the uploaded positions when
+  // the surface is drawn; none for the device's fluid.
+  std::vector<float> positions_;  // x, y, z arrays of fluid_n_ each
+  SplatBatch splats_;
+  bool splats_stale_ = true;
+  float splats_spacing_ = 0;
+  GLuint splat_vao_ = 0, splat_vbo_ = 0;
   float max_point_size_ = 1;
   float max_speed_ = 0, p_min_ = 0, p_max_ = 0, rho_min_ = 0, rho_max_ = 0;
   std::vector<float> scratch_;

@@ -85,6 +85,7 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   glUniform1i(splat_.loc("u_points"), f.points ? 1 : 0);
   glUniform1f(splat_.loc("u_viewport_h"), static_cast<float>(h));
   glUniform1i(splat_.loc("u_scene_depth"), 1);
+  glUniform1i(splat_.loc("u_weighted"), f.weighted ? 1 : 0);
   f.draw_fluid();
   glDisablei(GL_BLEND, 0);
   glDisablei(GL_BLEND, 1);

@@ -33,13 +33,15 @@ struct SurfacePassTimes {
   int width = 0, height = 0;  // the fluid passes' resolution in the last frame
 };
 
-/// What the surface needs of the frame; draw_fluid issues the fluid particles' draw call with
-/// the currently bound program (particle.vert's attributes and uniforms).
+/// What the surface needs of the frame; draw_fluid issues the fluid's splats' draw call with
+/// the currently bound program (surface_splat.vert's attributes: x, y, z and, when weighted,
+/// the splat's particle count).
 struct SurfaceFrame {
   Mat4 view, proj;
   int width = 1, height = 1;      // the target's size (pixels)
   GLuint target_fbo = 0;
   bool points = true;             // particles go out as point sprites
+  bool weighted = false;          // draw_fluid's attribute 3 holds splat weights (splat_batch.h)
   std::function<void()> draw_fluid;
   // Target pixels (x0, y0, x1, y1) outside which there is no water: the passes after the splats
   // skip the rest. The target already holds the opaque scene (the shading pass draws only

@@ -942,11 +942,15 @@ void Viewer::frame() {
   const double t = now_s();
   if (t - fps_t0_ >= 0.5) {
     fps_ = fps_frames_ / (t - fps_t0_);
+    // Adaptive resolution: below 33 fps the drawing shrinks towards a budget of 36 fps (its
+    // cost goes with the pixels, scale², plus a fixed part, so by at most the square root of the
+    // shortfall, and at most 30% per half second); above 48 fps it grows by 10% (21% more
+    // pixels: still above 33, so the two never chase each other).
     if (opt_.render_scale > 0)
       scale_ = std::min(opt_.render_scale, 1.0f);
-    else if (fps_ < 30)
-      scale_ = std::max(0.35f, scale_ * float(std::max(0.7, fps_ / 33)));
-    else if (fps_ > 50)
+    else if (fps_ < 33)
+      scale_ = std::max(0.35f, scale_ * float(std::clamp(std::sqrt(fps_ / 36), 0.7, 0.95)));
+    else if (fps_ > 48)
       scale_ = std::min(1.0f, scale_ * 1.1f);
     sim_ms_per_frame_ = fps_frames_ ? 1000 * std::max(0.0, frame_.busy_s - fps_busy0_) / fps_frames_ : 0;
     fps_t0_ = t;
@@ -1056,9 +1060,9 @@ void Viewer::print_stage_times() const {
   if (t.frames > 0) {
     const double n = double(t.frames);
     std::printf("; surface passes (within scene, last at %dx%d): scene %.2f, splat %.2f, "
-                "smooth %.2f, normal %.2f, shade %.2f", t.width, t.height, 1e3 * t.scene_s / n,
-                1e3 * t.splat_s / n, 1e3 * t.smooth_s / n, 1e3 * t.normal_s / n,
-                1e3 * t.shade_s / n);
+                "smooth %.2f, normal %.2f, shade %.2f; %zu splats", t.width, t.height,
+                1e3 * t.scene_s / n, 1e3 * t.splat_s / n, 1e3 * t.smooth_s / n,
+                1e3 * t.normal_s / n, 1e3 * t.shade_s / n, renderer_->splat_count());
   }
   std::printf("\n");
 }

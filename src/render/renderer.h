@@ -83,6 +83,8 @@ class Renderer {
   /// (0 shaded, 1 world normals as colour).
   const SurfacePassTimes& surface_times() const { return surface_->times(); }
   void set_surface_output(int output) { surface_->set_output(output); }
+  /// Points the last 3D surface frame splatted (splat_batch.h; 0 before one was drawn).
+  std::size_t splat_count() const { return splats_.size(); }
 
  private:
   struct OverlayVertex {

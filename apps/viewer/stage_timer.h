@@ -7,7 +7,10 @@
 
 #include <array>
 #include <chrono>
+#include <cstddef>
 #include <cstdio>
+
+#include "render/surface_pass.h"
 
 namespace rtsph::app {
 
@@ -36,6 +39,20 @@ class StageTimer {
   }
   long counted() const { return frames_ > kWarmup ? frames_ - kWarmup : 0; }
   double ms(Stage s) const { return counted() ? 1e3 * sum_s_[s] / double(counted()) : 0.0; }
+
+  /// One line on stdout: the stages, and the surface passes when the surface was drawn.
+  void print(const render::SurfacePassTimes& t, std::size_t splats) const {
+    std::printf("viewer: ms/frame over %ld frames (glFinish between stages):", counted());
+    for (int i = 0; i < kCount; ++i) std::printf(" %s %.2f", kNames[i], ms(Stage(i)));
+    if (t.frames > 0) {
+      const double n = double(t.frames);
+      std::printf("; surface passes (within scene, last at %dx%d): scene %.2f, splat %.2f, "
+                  "smooth %.2f, normal %.2f, shade %.2f; %zu splats", t.width, t.height,
+                  1e3 * t.scene_s / n, 1e3 * t.splat_s / n, 1e3 * t.smooth_s / n,
+                  1e3 * t.normal_s / n, 1e3 * t.shade_s / n, splats);
+    }
+    std::printf("\n");
+  }
 
  private:
   static constexpr long kWarmup = 5;

@@ -104,7 +104,6 @@ class Viewer {
   void draw_parameters();
   void run_script_step();
   void shutdown();
-  void print_stage_times() const;
   void update_brush();
   void move_obstacle_by(int axis, double sign);
   void toggle_recording();
@@ -1042,7 +1041,7 @@ int Viewer::run() {
                   spec_.name.c_str(), spec_.method.c_str(), f.stats.fluid_particles, frames_total_, wall, frames_total_ / wall,
                   100 * scale_, 1000 * f.busy_s / std::max<long>(frames_total_, 1), f.step_ms,
                   f.stats.time_s, f.stats.time_s / wall);
-      if (timer_.on()) print_stage_times();
+      if (timer_.on()) timer_.print(renderer_->surface_times(), renderer_->splat_count());
     }
   } catch (...) {
     shutdown();
@@ -1050,21 +1049,6 @@ int Viewer::run() {
   }
   shutdown();
   return 0;
-}
-
-void Viewer::print_stage_times() const {
-  std::printf("viewer: ms/frame over %ld frames (glFinish between stages):", timer_.counted());
-  for (int i = 0; i < StageTimer::kCount; ++i)
-    std::printf(" %s %.2f", StageTimer::kNames[i], timer_.ms(StageTimer::Stage(i)));
-  const render::SurfacePassTimes& t = renderer_->surface_times();
-  if (t.frames > 0) {
-    const double n = double(t.frames);
-    std::printf("; surface passes (within scene, last at %dx%d): scene %.2f, splat %.2f, "
-                "smooth %.2f, normal %.2f, shade %.2f; %zu splats", t.width, t.height,
-                1e3 * t.scene_s / n, 1e3 * t.splat_s / n, 1e3 * t.smooth_s / n,
-                1e3 * t.normal_s / n, 1e3 * t.shade_s / n, renderer_->splat_count());
-  }
-  std::printf("\n");
 }
 
 void Viewer::shutdown() {

@@ -68,7 +68,8 @@ int Renderer::draw_surface(const Camera& cam, const Mat4& view, const Mat4& proj
   if (three) splat.particle_radius *= 2;  // a merged cube's splat is twice as wide
   const bool points = use_points(cam, height, splat);
   // The batch is built inside the splat pass's draw, so that its CPU time counts there.
-  const bool batched = three && fluid_n_ > 0 && positions_.size() == 3 * fluid_n_;
+  const bool batched =
+      three && s.merge_interior && fluid_n_ > 0 && positions_.size() == 3 * fluid_n_;
   const float spacing = 2 * s.particle_radius;
   auto draw_fluid = [this, points, batched, spacing] {
     if (batched && update_splats(spacing)) draw_particles(splat_vao_, 0, splats_.size(), points);

@@ -64,7 +64,7 @@ int render_scene(const RenderJob& job) {
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", job.size));
   render::RenderSettings settings = parse_render_options(job.style, job.color, job.display, job.colormap);
   settings.time_passes = job.time_passes;
-  gas_defaults(spec, job.style, job.color, &settings);
+  gas_defaults(spec, job.style_given, job.color_given, &settings);
   if (job.range_max > job.range_min) {
     settings.auto_range = false;
     settings.range_min = float(job.range_min);
@@ -190,7 +190,9 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--set", o->sets, "Override a scene parameter, e.g. --set fluid.spacing=0.04");
   cmd->add_flag("--quiet", o->quiet, "No progress on the terminal");
   cmd->add_flag("--time-passes", o->time_passes, "Print the CPU time of each surface pass (glFinish between passes)");
-  cmd->callback([o, &exit_code] {
+  cmd->callback([o, cmd, &exit_code] {
+    o->style_given = cmd->count("--style") > 0;
+    o->color_given = cmd->count("--color") > 0;
     if (o->range.size() == 2) {
       o->range_min = o->range[0];
       o->range_max = o->range[1];

@@ -23,14 +23,12 @@ render::RenderSettings parse_render_options(const std::string& style, const std:
   return s;
 }
 
-void gas_defaults(const SimSpec& spec, const std::string& style, const std::string& color,
+void gas_defaults(const SimSpec& spec, bool style_given, bool color_given,
                   render::RenderSettings* s) {
   if (spec.open) s->walls = false;  // open space: no container to draw
   if (spec.method != "gas") return;
-  // A gas has no free surface, and its density spans decades: unless asked otherwise (the
-  // commands' defaults are "surface" and "solid"/"speed"), particles coloured by log10 ρ.
-  if (style == "surface") s->style = render::Style::Particles;
-  if (color == "solid" || color == "speed") s->color = render::ColorMode::LogDensity;
+  if (!style_given) s->style = render::Style::Particles;
+  if (!color_given) s->color = render::ColorMode::LogDensity;
 }
 
 }  // namespace rtsph::app

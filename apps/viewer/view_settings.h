@@ -14,9 +14,9 @@ render::RenderSettings parse_render_options(const std::string& style, const std:
                                             const std::string& colormap);
 
 /// Scene-dependent defaults: no container drawn in open space; for the gas method, particles
-/// coloured by log10 ρ when `style` and `color` are the commands' defaults ("surface",
-/// "solid" or "speed"), since a gas has no free surface and its density spans decades.
-void gas_defaults(const SimSpec& spec, const std::string& style, const std::string& color,
+/// coloured by log10 ρ, since a gas has no free surface and its density spans decades, unless
+/// --style or --color was given on the command line.
+void gas_defaults(const SimSpec& spec, bool style_given, bool color_given,
                   render::RenderSettings* s);
 
 inline constexpr const char* kViewerHelp =

@@ -58,6 +58,7 @@ struct ViewOptions {
   float render_scale = 0;  // 0: adapt to keep ≥ 30 fps; else fixed fraction of the window
   bool time_passes = false;  // print each stage's and surface pass's CPU time (with --report)
   std::string backend;     // cpu, gpu, auto; empty: the scene's solver.backend, else auto
+  bool style_given = false, color_given = false;  // on the command line: scene defaults yield
 };
 
 constexpr int kGlfwInitFailed = -100;  // run_default falls back to headless rendering
@@ -967,7 +968,7 @@ int Viewer::run() {
   if (!opt_.script.empty()) script_ = load_script(opt_.script);
   settings_ = parse_render_options(opt_.style, opt_.color, opt_.display, opt_.colormap);
   settings_.time_passes = opt_.time_passes;
-  gas_defaults(spec, opt_.style, opt_.color, &settings_);
+  gas_defaults(spec, opt_.style_given, opt_.color_given, &settings_);
   int w = 0, h = 0;
   if (!parse_size(opt_.size, &w, &h))
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", opt_.size));
@@ -1112,7 +1113,9 @@ void add_view_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--accurate", o->accurate, "Run the scene as written, not its real-time profile (scenes with viewer.realtime, e.g. the dam breaks, otherwise run PBF at a spacing this machine steps in real time)");
   cmd->add_flag("--time-passes", o->time_passes, "With --report: print the CPU time of each stage of a frame and of each surface pass (glFinish between them; slows drawing a little)");
   cmd->add_option("--render-scale", o->render_scale, "Draw the scene at this fraction of the window resolution (default: adaptive, to keep >= 30 fps)")->check(CLI::Range(0.1, 1.0));
-  cmd->callback([o, &exit_code] {
+  cmd->callback([o, cmd, &exit_code] {
+    o->style_given = cmd->count("--style") > 0;
+    o->color_given = cmd->count("--color") > 0;
     exit_code = guarded([&] {
       Viewer v(*o);
       int rc = v.run();

@@ -111,11 +111,21 @@ inline void store_packed(unsigned* out, unsigned base, unsigned bits) {
     if (bits & (1u << l)) out[k++] = base + l;
 #endif
 }
-/// Lane order is fixed, so the sum is the same on every run and thread count.
+/// Sum of the lanes as a fixed tree, ((0+4)+(2+6)) + ((1+5)+(3+7)), so it is the same on every
+/// run and thread count. A tree is three vector adds; a lane-by-lane sum is seven dependent
+/// scalar adds plus seven extracts, and a pair loop's epilogue sums up to nine batches per
+/// particle (PBF's λ pass: ~11% of its time went there).
 inline float hsum(f8 v) {
-  float s = 0.0f;
-  for (int i = 0; i < kWidth; ++i) s += v[i];
-  return s;
+#if defined(__AVX__)
+  const __m256 x = reinterpret_cast<__m256>(v);
+  __m128 s = _mm_add_ps(_mm256_castps256_ps128(x), _mm256_extractf128_ps(x, 1));  // 0+4 … 3+7
+  s = _mm_add_ps(s, _mm_movehl_ps(s, s));                                  // (0+4)+(2+6), (1+5)+(3+7)
+  s = _mm_add_ss(s, _mm_movehdup_ps(s));
+  return _mm_cvtss_f32(s);
+#else
+  const float a = (v[0] + v[4]) + (v[2] + v[6]), b = (v[1] + v[5]) + (v[3] + v[7]);
+  return a + b;
+#endif
 }
 
 // Scalar twins so kernels can be written once for float and f8.

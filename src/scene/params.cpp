@@ -160,6 +160,20 @@ const std::vector<ParamInfo>& parameter_table() {
                                          "arrangement uniform; 0 = off. WCSPH and DFSPH. No free-surface "
                                          "treatment yet: for confined or periodic flows (Taylor-Green).",
                                  .live = true}),
+      field<&SimSpec::hydrostatic_start>({.key = "fluid.hydrostatic_start", .default_value = 0,
+                                          .help = "WCSPH: start each fluid block compressed along gravity to the "
+                                                  "density its equation of state gives the hydrostatic pressure "
+                                                  "rho0 g depth (depth below the block's top), so water at rest "
+                                                  "starts at rest instead of settling with a slosh. "
+                                                  "Other methods keep rho0 and ignore it."}),
+      field<&SimSpec::transport_velocity>({.key = "solver.transport_velocity", .min = 0, .max = 10,
+                                           .default_value = 0,
+                                           .help = "Transport-velocity formulation (Adami, Hu & Adams 2013): "
+                                                   "particles move with v + dt a_b, a_b the push of a uniform "
+                                                   "background pressure p_b = this · rho0 c0², which keeps their "
+                                                   "arrangement uniform; 0 = off, 1 = Adami's p_b. WCSPH and DFSPH. "
+                                                   "No free-surface treatment: for confined or periodic flows "
+                                                   "(Taylor-Green)."}),
       field<&SimSpec::time_step_mode>({.key = "solver.time_step.mode", .default_text = "cfl",
                                        .choices = {"cfl", "fixed"},
                                        .help = "cfl: adaptive dt = cfl·h/(c0 + |v|max) (WCSPH) "

@@ -13,6 +13,7 @@ template <int D>
 Dfsph<D>::Dfsph(const SimSpec& spec, int threads) : W(spec, threads) {
   // Several sums per step over one neighbourhood: walk lists, not the grid.
   this->keep_neighbour_lists();
+  relax_ = jacobi_relaxation();
   // Derived after each neighbour update (saved, so a resumed step needs no recompute).
   this->add_method_field({"factor", &factor_, false, true});
   this->add_method_field({"neighbours", &neighbours_, false, true});
@@ -34,6 +35,7 @@ void Dfsph<D>::step() {
     ScopedTimer timer(times_.forces_s);
     this->compute_inverse_density();
     this->accelerations({.viscosity = true, .external = true, .wall_hydrostatic = true});  // a_nonp            (line 4)
+    this->add_transport_velocity_stress();                        // optional, Adami 2013
   }
   const double dt = choose_time_step();                           // CFL              (line 5)
   {
@@ -43,6 +45,7 @@ void Dfsph<D>::step() {
   correct_density_error(dt);                                      // Algorithm 3      (line 7)
   {
     ScopedTimer timer(times_.integrate_s);
+    this->transport_velocity_shift(dt, dt);                       // optional: Adami 2013
     this->drift(dt);                                              // x += Δt v*       (line 8)
     this->advance_scene(this->time_ + dt, dt);                    // obstacles, emitters
   }

@@ -22,6 +22,7 @@ class Dfsph final : public FluidWorld<D> {
 
   double choose_time_step() const;
   void compute_factors();                  // αᵢ and neighbour counts (2017, eq. 8); caches
+  double jacobi_relaxation() const;        // ω for the sweeps, from the rest lattice (dfsph_solve.cpp)
   double correct_density_error(double dt);       // Algorithm 3
   double correct_divergence_error(double dt);    // Algorithm 2
   /// Warm start from `total` (last step's pressure), then projected Jacobi sweeps until the
@@ -45,6 +46,7 @@ class Dfsph final : public FluidWorld<D> {
   // Σ_b Ψ_b∇W_ib and Σ_b Ψ_b v_b·∇W_ib. Rebuilt by compute_factors(); never saved.
   std::array<AlignedArray<Real>, D> pair_grad_, wall_grad_;
   AlignedArray<Real> wall_rate_;
+  double relax_ = 0.5;               // Jacobi ω, set once from the kernel (jacobi_relaxation)
   int density_iterations_ = 0, divergence_iterations_ = 0;
   double density_iteration_sum_ = 0, divergence_iteration_sum_ = 0;
   std::string failure_;

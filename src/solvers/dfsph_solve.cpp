@@ -8,6 +8,8 @@
 // r = Dρᵢ/Dt): eqs. 9-12 in this notation. Each solve starts from the last step's pressure
 // (warm start, section 4.3) and stops when the mean residual reaches its tolerance.
 #include <algorithm>
+#include <array>
+#include <vector>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -21,8 +23,11 @@ namespace rtsph {
 namespace {
 // Jacobi relaxation ω. With ω = 1 the sweeps diverge once a deep column carries its load
 // (measured: the error doubles every few sweeps); IISPH's ω = 0.5 (Ihmsen et al. 2014)
-// converges.
+// converges. At most this; wide kernels need less (jacobi_relaxation below).
 constexpr double kRelax = 0.5;
+// The share of the Jacobi stability limit 2/λmax used by the relaxation: the stiffest mode of
+// the rest lattice then changes by a factor |1 − ωλmax| ≤ 0.5 per sweep.
+constexpr double kStableShare = 0.75;
 // Share of the last step's pressure the warm start applies. At 1 it pumps energy into a tank at
 // rest (measured, 2D tank: kinetic energy 5.8 J at 0.9 against 0.065 J at 0.5, bottom pressure
 // 1.72 against 1.03 of ρ0gH); at 0 the first sweeps start from nothing (1.06 of ρ0gH).
@@ -31,6 +36,60 @@ constexpr double kWarm = 0.5;
 
 using simd::f8;
 using simd::i8;
+
+// The relaxation ω for the sweeps, from the rest lattice. On a uniform lattice the sweep's
+// operator (pressure → Δv → Dρ/Dt) is diagonal in Fourier modes P_j = e^{iq·x_j}: it multiplies
+// the mode by m²|S(q)|², S(q) = Σ_k sin(q·x_ik)∇W_ik, while the Jacobi diagonal 1/α is
+// m²Σ_k|∇W_ik|² (Σ_k ∇W_ik = 0 there). A sweep multiplies mode q by 1 − ω|S(q)|²/Σ|∇W|², so
+// Jacobi converges only for ω < 2/λmax, λmax = max_q |S(q)|²/Σ_k|∇W_ik|². The coherent sum grows
+// with the neighbour count: λmax = 2.15 for the cubic spline at h = s in 2D (2.81 in 3D), so
+// IISPH's ω = 0.5 holds there, but 5.67 for Wendland C2 at h = 2s (44 neighbours), where ω = 0.5
+// amplifies that mode 1.8-fold per sweep and a fluid at rest blew up within 8 steps (measured,
+// periodic box, velocity noise ×4 per step). ω = min(0.5, kStableShare · 2/λmax); λmax from a
+// scan of q over [0, π/s]^D.
+template <int D>
+double Dfsph<D>::jacobi_relaxation() const {
+  const double s = spec_.spacing, support2 = prm_.support * prm_.support;
+  const int reach = int(std::ceil(prm_.support / s));
+  std::vector<std::array<double, D>> offsets, grads;
+  double diag = 0;
+  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+    for (int z = (D == 3 ? -reach : 0); z <= (D == 3 ? reach : 0); ++z)
+      for (int y = -reach; y <= reach; ++y)
+        for (int x = -reach; x <= reach; ++x) {
+          const int c[3] = {x, y, z};
+          double r2 = 0;
+          std::array<double, D> d{};
+          for (int k = 0; k < D; ++k) { d[k] = c[k] * s; r2 += d[k] * d[k]; }
+          if (r2 == 0 || r2 >= support2) continue;
+          const double G = K.grad_factor(float(r2));
+          std::array<double, D> g{};
+          for (int k = 0; k < D; ++k) { g[k] = G * d[k]; diag += g[k] * g[k]; }
+          offsets.push_back(d);
+          grads.push_back(g);
+        }
+  });
+  if (diag <= 0) return kRelax;
+  const int nq = D == 2 ? 64 : 24;
+  double lmax = 0;
+  const int total = D == 2 ? nq * nq : nq * nq * nq;
+  for (int idx = 0; idx < total; ++idx) {
+    double q[D];
+    int rest = idx;
+    for (int k = 0; k < D; ++k) { q[k] = M_PI / s * (rest % nq) / (nq - 1); rest /= nq; }
+    double S[D] = {};
+    for (std::size_t j = 0; j < offsets.size(); ++j) {
+      double phase = 0;
+      for (int k = 0; k < D; ++k) phase += q[k] * offsets[j][k];
+      const double sn = std::sin(phase);
+      for (int k = 0; k < D; ++k) S[k] += sn * grads[j][k];
+    }
+    double s2 = 0;
+    for (int k = 0; k < D; ++k) s2 += S[k] * S[k];
+    lmax = std::max(lmax, s2 / diag);
+  }
+  return lmax > 0 ? std::min(kRelax, kStableShare * 2.0 / lmax) : kRelax;
+}
 
 template <int D>
 void Dfsph<D>::compute_factors() {
@@ -135,7 +194,7 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
       // Density: r = ρ*ᵢ − ρ0 with ρ*ᵢ = ρᵢ + Δt Dρᵢ/Dt; divergence: r = Dρᵢ/Dt.
       double r = density ? fluid_.rho[i] + dt * rate - rho0 : rate;
       const bool thin = !density && neighbours_[i] < min_neighbours;
-      double p = thin ? 0.0 : total[i] + kRelax * r * factor_[i] * to_p;
+      double p = thin ? 0.0 : total[i] + relax_ * r * factor_[i] * to_p;
       if (clamp) p = std::max(p, 0.0);
       pressure_[i] = Real(p - total[i]);
       // Where pressure acts, expansion is an error too (it is pressure applied in excess,
@@ -234,6 +293,7 @@ double Dfsph<D>::correct_divergence_error(double dt) {
 }
 
 #define RTSPH_INSTANTIATE(D)                                  \
+  template double Dfsph<D>::jacobi_relaxation() const;        \
   template void Dfsph<D>::compute_factors();                  \
   template void Dfsph<D>::state_loaded();                     \
   template double Dfsph<D>::correct_density_error(double);    \

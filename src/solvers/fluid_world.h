@@ -227,6 +227,25 @@ class FluidWorld : public Simulation {
   /// solver.shifting: moves each particle down its concentration gradient. Call right after
   /// update_neighbours(), before the density. Nothing when A = 0 (shifting.cpp).
   void shift_particles(double dt);
+  /// With fluid.hydrostatic_start (a weakly compressible method's constructor calls it, before
+  /// its first neighbour update): moves each particle of a fluid block along gravity so the
+  /// block's lattice is compressed to the density ρ(d) its equation of state gives the
+  /// hydrostatic pressure ρ0 g d, d the depth below the block's top.
+  void compress_hydrostatically();
+  /// Transport-velocity formulation (Adami, Hu & Adams 2013): moves each particle by
+  /// Δt_drift·Δt_kick·a_b, the acceleration of a uniform background pressure p_b =
+  /// solver.transport_velocity·ρ0c0², which keeps the arrangement uniform. Call just before
+  /// drift, with the positions and densities the step's forces came from. Nothing when the
+  /// parameter is 0 (transport_velocity.cpp).
+  void transport_velocity_shift(double dt_kick, double dt_drift);
+  /// The momentum correction of the same formulation (Adami et al. 2013, eq. 8's second term):
+  /// aᵢ += Σⱼ m (1/ρᵢ² + 1/ρⱼ²) ½(Aᵢ + Aⱼ)·∇Wᵢⱼ with A = ρ v ⊗ (ṽ − v), which transports the
+  /// momentum with the particles' transport velocity. Call after accelerations(). Nothing when
+  /// solver.transport_velocity is 0.
+  void add_transport_velocity_stress();
+  /// Adds shift[k][i] to the positions: periodic axes wrap, wall planes clamp. The sort stays
+  /// valid for displacements far below a cell.
+  void displace_fluid(const Real* const shift[D]);
   PairArrays<D> pair_arrays() const {
     PairArrays<D> a;
     for (int k = 0; k < D; ++k) {
@@ -282,6 +301,7 @@ class FluidWorld : public Simulation {
 
   std::vector<MethodField> method_fields_;
   bool keep_lists_ = false;
+  AlignedArray<Real> transport_dv_[D];  // ṽ − v of the last transport_velocity_shift (m/s)
 };
 
 }  // namespace rtsph

@@ -184,9 +184,12 @@ double Pbf<D>::compute_lambda() {
             gf[k] += g;
             simd::store(grad_out[k] + slot, g);
           }
-          const f8 q = w * inv_w_dq;
-          f8 qn = q;
-          for (int p = 1; p < n_corr; ++p) qn *= q;
+          // (W/W(Δq))ⁿ by squaring: the bits of n are loop-invariant branches.
+          const f8 q = w * inv_w_dq, q2 = q * q, q4 = q2 * q2;
+          f8 qn = (n_corr & 1) ? q : simd::splat(1.0f);
+          if (n_corr & 2) qn *= q2;
+          if (n_corr & 4) qn *= q4;
+          if (n_corr & 8) qn *= q4 * q4;
           simd::store(scorr_out + slot, qn);
           slot += simd::kWidth;
         });

@@ -61,8 +61,13 @@ void FluidWorld<D>::shift_particles(double dt) {
   });
   // Applied after every particle has gathered, so no sum saw a half-shifted neighbourhood; a
   // shift is far below a cell, so the sort stays valid (as after drift).
+  displace_fluid(shift);
+}
+
+template <int D>
+void FluidWorld<D>::displace_fluid(const Real* const shift[D]) {
   const WallPlanes w = wall_planes();
-  pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+  pool_.parallel_for(fluid_.size(), [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i)
       for (int k = 0; k < D; ++k) {
         Real x = fluid_.x[k][i] + shift[k][i];
@@ -80,5 +85,7 @@ void FluidWorld<D>::shift_particles(double dt) {
 
 template void FluidWorld<2>::shift_particles(double);
 template void FluidWorld<3>::shift_particles(double);
+template void FluidWorld<2>::displace_fluid(const Real* const[2]);
+template void FluidWorld<3>::displace_fluid(const Real* const[3]);
 
 }  // namespace rtsph

@@ -82,6 +82,8 @@ struct SimSpec {
   double artificial_viscosity = 0.02;  // Monaghan α (dimensionless)
   bool clamp_negative_pressure = true;  // avoids tensile clumping at the free surface
   double shifting = 0;             // particle shifting A (Lind et al. 2012, D = A h |v| dt); 0 = off
+  bool hydrostatic_start = false;  // WCSPH: blocks start compressed to their hydrostatic density
+  double transport_velocity = 0;   // background pressure p_b / (ρ0 c0²) of Adami et al. 2013; 0 = off
   TimeStepMode time_step_mode = TimeStepMode::Cfl;
   double cfl = 0.4;                // CFL number for 0.4·h/(c0 + |v|max)
   double dt = 1e-4;                // s, fixed-step mode

@@ -9,6 +9,7 @@ namespace rtsph {
 
 template <int D>
 Wcsph<D>::Wcsph(const SimSpec& spec, int threads) : W(spec, threads) {
+  this->compress_hydrostatically();  // optional (fluid.hydrostatic_start); update_forces sorts
   update_forces();
   this->reset_stage_times();
 }
@@ -20,6 +21,7 @@ void Wcsph<D>::step() {
   {
     ScopedTimer timer(this->times_.integrate_s);
     this->kick(0.5 * dt);                         // v(t+dt/2) = v(t) + a(t) dt/2
+    this->transport_velocity_shift(0.5 * dt, dt);  // optional: x += dt·(dt/2)·a_b(t) (Adami 2013)
     this->drift(dt);                              // x(t+dt) = x(t) + v(t+dt/2) dt
     this->advance_scene(this->time_ + dt, dt);    // obstacles, emitters, put-back
   }
@@ -48,6 +50,7 @@ void Wcsph<D>::update_forces() {
     // Symmetric pressure (Monaghan 1992), viscosity, gravity, brush: one pair loop.
     this->accelerations({.pressure = this->ctx_.p_over_rho2.data(),
                          .boundary_pressure = this->ctx_.boundary_p_over_rho2.data()});
+    this->add_transport_velocity_stress();  // optional (solver.transport_velocity, Adami 2013)
   }
 }
 

@@ -29,6 +29,16 @@ if cmp -s "$work/d2_fluid.png" "$work/d2_particles.png"; then echo "FAIL: --styl
 check test $? -eq 0
 check grep -q "surface passes" "$work/passes"
 
+# A gas scene draws particles coloured by log density unless --style/--color are given: an
+# explicit --style surface is kept (it was overridden), and --style particles is the default.
+for st in default surface particles; do
+  opt=(); [ "$st" = default ] || opt=(--style "$st")
+  "$bin" render toy_star_2d --out "$work/gas_$st.png" --frames 1 --size 96x96 "${opt[@]}" --quiet >/dev/null
+  check test $? -eq 0
+done
+check cmp -s "$work/gas_default.png" "$work/gas_particles.png"
+if cmp -s "$work/gas_default.png" "$work/gas_surface.png"; then echo "FAIL: gas --style surface drew the default particles"; fail=1; fi
+
 # A directory of frames.
 "$bin" render dam_break_2d --set fluid.spacing=0.05 --out "$work/frames" --frames 3 --fps 60 --size 96x64 --color pressure --quiet >/dev/null
 check test $? -eq 0

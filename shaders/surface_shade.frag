@@ -10,7 +10,8 @@
 //   water's own colour scattered in, so deep water is darker and bluer than shallow water;
 // - a Blinn-Phong highlight of a sun fixed in the world;
 // - thin spots (a ray through one or two droplets) are spray: drawn as small white drops.
-// Where the scene is nearer than the water, or there is no water, the scene shows unchanged.
+// Where the scene is nearer than the water, or there is no water, the scene that the target
+// already holds shows unchanged.
 in vec2 v_uv;
 
 uniform sampler2D u_scene;        // opaque scene colour, full resolution
@@ -45,15 +46,12 @@ vec3 sky(vec3 dir_world) {
 }
 
 void main() {
-  float scene_wd = texture(u_scene_depth, v_uv).r;
-  vec3 scene = texture(u_scene, v_uv).rgb;
   vec4 nd = texture(u_normal_depth, v_uv);
-  float d = nd.w >= 0.5 ? nd.z / nd.w : 0.0;
-  if (d <= 0.0 || d > -view_z(scene_wd)) {
-    o_color = vec4(scene, 1.0);
-    gl_FragDepth = scene_wd;
-    return;
-  }
+  if (nd.w < 0.5) discard;  // no water: the target holds the scene already
+  float d = nd.z / nd.w;
+  float scene_wd = texture(u_scene_depth, v_uv).r;
+  if (d <= 0.0 || d > -view_z(scene_wd)) discard;  // the scene is in front
+  vec3 scene = texture(u_scene, v_uv).rgb;
   vec3 p = view_pos(v_uv, d);
   vec2 nxy = nd.xy / nd.w;
   vec3 n = normalize(vec3(nxy, sqrt(max(1.0 - dot(nxy, nxy), 0.0))));

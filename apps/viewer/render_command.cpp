@@ -47,11 +47,11 @@ bool ends_with(const std::string& s, const std::string& suffix) {
   std::transform(tail.begin(), tail.end(), tail.begin(), [](unsigned char c) { return std::tolower(c); });
   return tail == suffix;
 }
-void print_pass_times(const render::SurfacePassTimes& t) {
+void print_pass_times(const render::SurfacePassTimes& t, std::size_t splats) {
   const double n = double(std::max(t.frames, 1L));
-  std::fprintf(stderr, "rtsph render: surface passes over %ld frames, ms/frame: scene %.2f, splat %.2f, smooth %.2f, normal %.2f, shade %.2f\n",
+  std::fprintf(stderr, "rtsph render: surface passes over %ld frames, ms/frame: scene %.2f, splat %.2f, smooth %.2f, normal %.2f, shade %.2f (last frame: %zu splats)\n",
                t.frames, 1e3 * t.scene_s / n, 1e3 * t.splat_s / n, 1e3 * t.smooth_s / n,
-               1e3 * t.normal_s / n, 1e3 * t.shade_s / n);
+               1e3 * t.normal_s / n, 1e3 * t.shade_s / n, splats);
 }
 }  // namespace
 
@@ -165,7 +165,7 @@ int render_scene(const RenderJob& job) {
   if (!job.quiet)
     std::fprintf(stderr, "rtsph render: %d frame%s, simulated 0..%.3f s in %.1f s (simulation %.1f s, drawing %.1f s)\n",
                  frames, frames == 1 ? "" : "s", t_end, wall, sim_s, draw_s);
-  if (job.time_passes) print_pass_times(renderer.surface_times());
+  if (job.time_passes) print_pass_times(renderer.surface_times(), renderer.splat_count());
   std::printf("%s\n", single_png ? job.out.c_str() : sink->path().c_str());
   return 0;
 }

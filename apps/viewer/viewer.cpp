@@ -27,6 +27,7 @@
 #include "apps/viewer/scene_view.h"
 #include "apps/viewer/script.h"
 #include "apps/viewer/sim_runner.h"
+#include "apps/viewer/stage_timer.h"
 #include "apps/viewer/viewer_backend.h"
 #include "apps/viewer/view_settings.h"
 #include "render/gl_context.h"
@@ -55,6 +56,7 @@ struct ViewOptions {
   bool report = false;
   bool accurate = false;   // run scenes as written, not their real-time profile
   float render_scale = 0;  // 0: adapt to keep ≥ 30 fps; else fixed fraction of the window
+  bool time_passes = false;  // print each stage's and surface pass's CPU time (with --report)
   std::string backend;     // cpu, gpu, auto; empty: the scene's solver.backend, else auto
   bool style_given = false, color_given = false;  // on the command line: scene defaults yield
 };
@@ -80,7 +82,7 @@ render::Vec3f to3f(const Vec3d& v) { return {float(v[0]), float(v[1]), float(v[2
 
 class Viewer {
  public:
-  explicit Viewer(ViewOptions o) : opt_(std::move(o)) {}
+  explicit Viewer(ViewOptions o) : opt_(std::move(o)), timer_(opt_.time_passes) {}
   int run();
 
   // Input, from GLFW callbacks or the script.
@@ -184,6 +186,7 @@ class Viewer {
     double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
   };
   std::optional<ScriptDrag> script_drag_;
+  StageTimer timer_;
 };
 
 bool have_display() {
@@ -847,6 +850,7 @@ void Viewer::follow_cloud() {
 }
 
 void Viewer::frame() {
+  timer_.start();
   if (!script_.empty()) run_script_step();
   // The GPU backend steps here, in this thread's context: at most about a 60th of a second per
   // frame, so drawing keeps its rate whatever a step costs.
@@ -882,6 +886,7 @@ void Viewer::frame() {
   }
   if (drag_ == Drag::BrushPush || drag_ == Drag::BrushPull) update_brush();
 
+  timer_.lap(StageTimer::kUpload);
   int fbw = 1, fbh = 1;
   glfwGetFramebufferSize(win_, &fbw, &fbh);
   if (fbw > 0 && fbh > 0) {
@@ -897,6 +902,7 @@ void Viewer::frame() {
       render::RenderSettings s = settings_;
       s.legend = false;
       renderer_->draw(cam_, rw, rh, s);
+      timer_.lap(StageTimer::kScene);
       glBindFramebuffer(GL_READ_FRAMEBUFFER, lowres_->fbo());
       glBindFramebuffer(GL_DRAW_FRAMEBUFFER, 0);
       glBlitFramebuffer(0, 0, rw, rh, 0, 0, fbw, fbh, GL_COLOR_BUFFER_BIT, GL_LINEAR);
@@ -905,7 +911,9 @@ void Viewer::frame() {
     } else {
       glBindFramebuffer(GL_FRAMEBUFFER, 0);
       renderer_->draw(cam_, fbw, fbh, settings_);
+      timer_.lap(StageTimer::kScene);
     }
+    timer_.lap(StageTimer::kBlit);
     capture(fbw, fbh);
   }
 
@@ -923,7 +931,10 @@ void Viewer::frame() {
   }
   ImGui::Render();
   ImGui_ImplOpenGL3_RenderDrawData(ImGui::GetDrawData());
+  timer_.lap(StageTimer::kUi);
   glfwSwapBuffers(win_);
+  timer_.lap(StageTimer::kSwap);
+  timer_.end_frame();
 
   // fps and simulation cost per drawn frame, over half-second windows
   ++fps_frames_;
@@ -931,11 +942,15 @@ void Viewer::frame() {
   const double t = now_s();
   if (t - fps_t0_ >= 0.5) {
     fps_ = fps_frames_ / (t - fps_t0_);
+    // Adaptive resolution: below 33 fps the drawing shrinks towards a budget of 36 fps (its
+    // cost goes with the pixels, scale², plus a fixed part, so by at most the square root of the
+    // shortfall, and at most 30% per half second); above 48 fps it grows by 10% (21% more
+    // pixels: still above 33, so the two never chase each other).
     if (opt_.render_scale > 0)
       scale_ = std::min(opt_.render_scale, 1.0f);
-    else if (fps_ < 30)
-      scale_ = std::max(0.35f, scale_ * float(std::max(0.7, fps_ / 33)));
-    else if (fps_ > 50)
+    else if (fps_ < 33)
+      scale_ = std::max(0.35f, scale_ * float(std::clamp(std::sqrt(fps_ / 36), 0.7, 0.95)));
+    else if (fps_ > 48)
       scale_ = std::min(1.0f, scale_ * 1.1f);
     sim_ms_per_frame_ = fps_frames_ ? 1000 * std::max(0.0, frame_.busy_s - fps_busy0_) / fps_frames_ : 0;
     fps_t0_ = t;
@@ -952,6 +967,7 @@ int Viewer::run() {
   SimSpec spec = for_viewer(load_scene(opt_.scene), opt_.sets);
   if (!opt_.script.empty()) script_ = load_script(opt_.script);
   settings_ = parse_render_options(opt_.style, opt_.color, opt_.display, opt_.colormap);
+  settings_.time_passes = opt_.time_passes;
   gas_defaults(spec, opt_.style_given, opt_.color_given, &settings_);
   int w = 0, h = 0;
   if (!parse_size(opt_.size, &w, &h))
@@ -1026,6 +1042,7 @@ int Viewer::run() {
                   spec_.name.c_str(), spec_.method.c_str(), f.stats.fluid_particles, frames_total_, wall, frames_total_ / wall,
                   100 * scale_, 1000 * f.busy_s / std::max<long>(frames_total_, 1), f.step_ms,
                   f.stats.time_s, f.stats.time_s / wall);
+      if (timer_.on()) timer_.print(renderer_->surface_times(), renderer_->splat_count());
     }
   } catch (...) {
     shutdown();
@@ -1094,6 +1111,7 @@ void add_view_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--frames", o->max_frames, "Quit after this many frames")->check(CLI::Range(1L, 1000000000L));
   cmd->add_flag("--report", o->report, "Print fps and simulation cost on exit");
   cmd->add_flag("--accurate", o->accurate, "Run the scene as written, not its real-time profile (scenes with viewer.realtime, e.g. the dam breaks, otherwise run PBF at a spacing this machine steps in real time)");
+  cmd->add_flag("--time-passes", o->time_passes, "With --report: print the CPU time of each stage of a frame and of each surface pass (glFinish between them; slows drawing a little)");
   cmd->add_option("--render-scale", o->render_scale, "Draw the scene at this fraction of the window resolution (default: adaptive, to keep >= 30 fps)")->check(CLI::Range(0.1, 1.0));
   cmd->callback([o, cmd, &exit_code] {
     o->style_given = cmd->count("--style") > 0;

@@ -52,6 +52,10 @@ struct RenderSettings {
   /// Surface style, 3D: fraction of the frame's resolution the fluid passes (depth, smoothing,
   /// thickness) run at; the shading pass runs at full resolution.
   float surface_scale = 0.5f;
+  /// Surface style, 3D: interior particles of an uploaded fluid are splatted as merged cubes
+  /// (splat_batch.h: fewer points, the same thickness integral); the GPU backend's fluid, never
+  /// read back, is always splatted particle by particle, as it is with this off.
+  bool merge_interior = true;
   /// Times each surface pass on the CPU with glFinish between passes (Renderer::pass_times);
   /// costs the pipelining, so off except for measurements.
   bool time_passes = false;

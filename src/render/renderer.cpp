@@ -44,6 +44,8 @@ Renderer::Renderer()
   glGenVertexArrays(1, &boundary_vao_);
   glGenVertexArrays(1, &line_vao_);
   glGenVertexArrays(1, &overlay_vao_);
+  glGenVertexArrays(1, &splat_vao_);
+  glGenBuffers(1, &splat_vbo_);
   glGenBuffers(1, &fluid_vbo_);
   glGenBuffers(1, &boundary_vbo_);
   glGenBuffers(1, &line_vbo_);
@@ -81,6 +83,8 @@ Renderer::~Renderer() {
   GLuint vbos[] = {fluid_vbo_, boundary_vbo_, line_vbo_, overlay_vbo_};
   glDeleteVertexArrays(4, vaos);
   glDeleteBuffers(4, vbos);
+  glDeleteVertexArrays(1, &splat_vao_);
+  glDeleteBuffers(1, &splat_vbo_);
   glDeleteTextures(1, &lut_tex_);
 }
 
@@ -166,7 +170,9 @@ void Renderer::upload(const ParticleView& f, const BoundaryView* b) {
 
   upload_boundary(b);
 
-  if (!have_domain_ && n > 0) {
+  // The fluid's bounds: the surface passes work only where its projection falls.
+  fluid_box_ = n > 0;
+  if (n > 0) {
     Vec3f lo{std::numeric_limits<float>::max(), std::numeric_limits<float>::max(), 0};
     Vec3f hi{std::numeric_limits<float>::lowest(), std::numeric_limits<float>::lowest(), 0};
     for (std::size_t i = 0; i < n; ++i) {
@@ -181,8 +187,21 @@ void Renderer::upload(const ParticleView& f, const BoundaryView* b) {
         hi.z = std::max(hi.z, f.x[2][i]);
       }
     }
-    lo_ = lo;
-    hi_ = hi;
+    fluid_lo_ = lo;
+    fluid_hi_ = hi;
+    if (f.dim == 3 && f.x[2]) {
+      positions_.resize(3 * n);
+      for (int k = 0; k < 3; ++k) std::memcpy(positions_.data() + k * n, f.x[k], n * sizeof(float));
+      splats_stale_ = true;
+    } else {
+      positions_.clear();
+    }
+    // Positions that are not finite (a blown-up run) leave no usable box.
+    for (float v : {lo.x, lo.y, lo.z, hi.x, hi.y, hi.z}) fluid_box_ = fluid_box_ && std::isfinite(v);
+    if (!have_domain_) {
+      lo_ = lo;
+      hi_ = hi;
+    }
   }
 }
 
@@ -465,31 +484,43 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
   const Vec3f size = hi_ - lo_;
   const float extent = std::max({size.x, size.y, three ? size.z : 0.0f, 1e-3f});
 
-  // Ground grid (3D: the floor plane, 2D: behind the particles) and, in 2D, the walls.
+  // What the fluid lies in front of: the ground grid (3D: the floor plane, 2D: behind the
+  // particles), in 2D the walls, the obstacle solids; with the 3D surface also the container's
+  // far faces, which lie behind the water and are part of the refracted scene.
   std::vector<LineVertex> lv;
   if (s.grid) build_grid_lines(dim_, lo_, hi_, &lv);
-  if (!lv.empty()) {
-    glDepthMask(GL_FALSE);
-    draw_lines(lv, GL_LINES, vp);
-    glDepthMask(GL_TRUE);
-    ++st.draw_calls;
+  auto draw_opaque = [&] {
+    glEnable(GL_BLEND);
+    if (!lv.empty()) {
+      glDepthMask(GL_FALSE);
+      draw_lines(lv, GL_LINES, vp);
+      glDepthMask(GL_TRUE);
+      ++st.draw_calls;
+    }
+    if (!three && s.walls) {
+      // 2D walls: a translucent band around the domain.
+      std::vector<LineVertex> tri;
+      build_walls_2d(lo_, hi_, std::max(2.0f * s.particle_radius, 0.01f * extent), &tri);
+      draw_lines(tri, GL_TRIANGLES, vp);
+      ++st.draw_calls;
+    }
+    glDisable(GL_BLEND);  // solids and particles are opaque; blending costs a read per fragment
+    // Obstacle solids before the particles: in 2D (no depth test) the fluid lies on top of
+    // them; in 3D both write their true depth, so the order does not matter.
+    if (s.display != DisplayMode::Fluid && solids_.draw(dim_, view, proj, cam.dim == 2, s.obstacle))
+      ++st.draw_calls;
+    if (surface && three && s.walls) draw_container(cam, vp, true, false, &st);
+  };
+  draw_opaque();
+  if (surface && three) {
+    // The opaque scene went to the surface's texture (what the water refracts); drawn again
+    // into the target, the shading pass needs to touch only the pixels around the water.
+    glBindFramebuffer(GL_FRAMEBUFFER, GLuint(target_fbo));
+    glViewport(0, 0, width, height);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    draw_opaque();
   }
-  if (!three && s.walls) {
-    // 2D walls: a translucent band around the domain.
-    std::vector<LineVertex> tri;
-    build_walls_2d(lo_, hi_, std::max(2.0f * s.particle_radius, 0.01f * extent), &tri);
-    draw_lines(tri, GL_TRIANGLES, vp);
-    ++st.draw_calls;
-  }
-
-  glDisable(GL_BLEND);  // solids and particles are opaque; blending costs a read per fragment
-  // Obstacle solids before the particles: in 2D (no depth test) the fluid lies on top of them;
-  // in 3D both write their true depth, so the order does not matter.
-  if (s.display != DisplayMode::Fluid && solids_.draw(dim_, view, proj, cam.dim == 2, s.obstacle))
-    ++st.draw_calls;
   if (surface) {
-    // The container's far faces lie behind the water: part of the refracted scene.
-    if (three && s.walls) draw_container(cam, vp, true, false, &st);
     st.draw_calls += draw_surface(cam, view, proj, width, height, GLuint(target_fbo), s);
     st.particles_drawn += fluid_n_;
   }
@@ -536,59 +567,6 @@ DrawStats Renderer::draw(const Camera& cam, int width, int height, const RenderS
   glUseProgram(0);
   glDisable(GL_BLEND);
   return st;
-}
-
-OffscreenTarget::OffscreenTarget(int width, int height) : w_(width), h_(height) {
-  glGenFramebuffers(1, &fbo_);
-  glGenRenderbuffers(1, &color_);
-  glGenRenderbuffers(1, &depth_);
-  glBindRenderbuffer(GL_RENDERBUFFER, color_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, width, height);
-  glBindRenderbuffer(GL_RENDERBUFFER, depth_);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_DEPTH_COMPONENT24, width, height);
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, color_);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, depth_);
-  GLenum status = glCheckFramebufferStatus(GL_FRAMEBUFFER);
-  glBindRenderbuffer(GL_RENDERBUFFER, 0);
-  if (status != GL_FRAMEBUFFER_COMPLETE) {
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    throw std::runtime_error(fmt::format("framebuffer {}x{} incomplete (0x{:x})", width, height,
-                                         static_cast<unsigned>(status)));
-  }
-}
-
-OffscreenTarget::~OffscreenTarget() {
-  glDeleteFramebuffers(1, &fbo_);
-  glDeleteRenderbuffers(1, &color_);
-  glDeleteRenderbuffers(1, &depth_);
-}
-
-void OffscreenTarget::bind() const {
-  glBindFramebuffer(GL_FRAMEBUFFER, fbo_);
-  glViewport(0, 0, w_, h_);
-}
-
-std::vector<unsigned char> OffscreenTarget::read_rgba() const {
-  glBindFramebuffer(GL_READ_FRAMEBUFFER, fbo_);
-  return read_framebuffer(w_, h_);
-}
-
-std::vector<unsigned char> read_framebuffer(int width, int height) {
-  std::vector<unsigned char> px(static_cast<std::size_t>(width) * height * 4);
-  glPixelStorei(GL_PACK_ALIGNMENT, 1);
-  glReadPixels(0, 0, width, height, GL_RGBA, GL_UNSIGNED_BYTE, px.data());
-  // GL's first row is the bottom one.
-  const std::size_t row = static_cast<std::size_t>(width) * 4;
-  std::vector<unsigned char> tmp(row);
-  for (int y = 0; y < height / 2; ++y) {
-    unsigned char* a = px.data() + y * row;
-    unsigned char* b = px.data() + (height - 1 - y) * row;
-    std::memcpy(tmp.data(), a, row);
-    std::memcpy(a, b, row);
-    std::memcpy(b, tmp.data(), row);
-  }
-  return px;
 }
 
 }  // namespace rtsph::render

@@ -9,6 +9,7 @@
 // (2D, filled contour), from the same vertex buffer (renderer_surface.cpp).
 #include <epoxy/gl.h>
 
+#include <array>
 #include <memory>
 #include <string>
 #include <utility>
@@ -21,6 +22,7 @@
 #include "render/scene_lines.h"
 #include "render/shader.h"
 #include "render/solids.h"
+#include "render/splat_batch.h"
 #include "render/surface2d_pass.h"
 #include "render/surface_pass.h"
 
@@ -81,6 +83,8 @@ class Renderer {
   /// (0 shaded, 1 world normals as colour).
   const SurfacePassTimes& surface_times() const { return surface_->times(); }
   void set_surface_output(int output) { surface_->set_output(output); }
+  /// Points the last 3D surface frame splatted (splat_batch.h; 0 before one was drawn).
+  std::size_t splat_count() const { return splats_.size(); }
 
  private:
   struct OverlayVertex {
@@ -99,6 +103,10 @@ class Renderer {
   void draw_particles(GLuint vao, std::size_t first, std::size_t count, bool points);
   bool use_points(const Camera& cam, int height, const RenderSettings& s) const;
   void draw_container(const Camera& cam, const Mat4& vp, bool faces, bool edges, DrawStats* st);
+  /// Brings the splat buffer up to date; false when there is none (the device's fluid).
+  bool update_splats(float spacing);
+  std::array<int, 4> screen_box(const Mat4& view, const Mat4& proj, int width, int height,
+                                float grow) const;
   /// The fluid in the surface style (renderer_surface.cpp); leaves target_fbo bound.
   int draw_surface(const Camera& cam, const Mat4& view, const Mat4& proj, int width, int height,
                    GLuint target_fbo, const RenderSettings& s);
@@ -117,6 +125,15 @@ class Renderer {
   int dim_ = 3;
   bool have_domain_ = false;
   Vec3f lo_{0, 0, 0}, hi_{1, 1, 1};
+  bool fluid_box_ = false;  // fluid_lo_/hi_ bound the uploaded fluid (not the device's)
+  Vec3f fluid_lo_{0, 0, 0}, fluid_hi_{0, 0, 0};
+  // The 3D surface's splats (splat_batch.h), built from a copy of the uploaded positions when
+  // the surface is drawn; none for the device's fluid.
+  std::vector<float> positions_;  // x, y, z arrays of fluid_n_ each
+  SplatBatch splats_;
+  bool splats_stale_ = true;
+  float splats_spacing_ = 0;
+  GLuint splat_vao_ = 0, splat_vbo_ = 0;
   float max_point_size_ = 1;
   float max_speed_ = 0, p_min_ = 0, p_max_ = 0, rho_min_ = 0, rho_max_ = 0;
   std::vector<float> scratch_;

@@ -8,6 +8,8 @@ namespace rtsph::render {
 void Renderer::use_device(const DeviceParticles& f, const BoundaryView* b) {
   if (!have_domain_) dim_ = f.dim;
   fluid_n_ = f.count;
+  fluid_box_ = false;  // the positions stay on the GPU: the surface passes cover the frame
+  positions_.clear();
   max_speed_ = f.max_speed;
   p_min_ = f.pressure_min;
   p_max_ = f.pressure_max;

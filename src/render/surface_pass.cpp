@@ -19,7 +19,7 @@ void bind_texture(int unit, GLuint tex) {
 }  // namespace
 
 SurfacePass::SurfacePass()
-    : splat_({"particle.vert", "surface_splat.frag"}),
+    : splat_({"surface_splat.vert", "surface_splat.frag"}),
       smooth_({"surface_quad.vert", "surface_smooth.frag"}),
       normal_({"surface_quad.vert", "surface_normal.frag"}),
       shade_({"surface_quad.vert", "surface_shade.frag"}),
@@ -58,6 +58,8 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   const int w = std::max(8, static_cast<int>(std::lround(f.width * scale)));
   const int h = std::max(8, static_cast<int>(std::lround(f.height * scale)));
   const float r = s.particle_radius;
+  times_.width = w;
+  times_.height = h;
   glDisable(GL_BLEND);
   glDisable(GL_CULL_FACE);
   if (f.points) glEnable(GL_PROGRAM_POINT_SIZE);
@@ -80,20 +82,35 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   glUniformMatrix4fv(splat_.loc("u_proj"), 1, GL_FALSE, f.proj.data());
   glUniform1f(splat_.loc("u_radius"), 2 * r);  // the thickness splat, one spacing wide
   glUniform1f(splat_.loc("u_sphere"), kDepthSplat * r);
-  glUniform1i(splat_.loc("u_dim"), 3);
-  glUniform1i(splat_.loc("u_ortho"), 0);
-  glUniform1i(splat_.loc("u_color_mode"), 0);
   glUniform1i(splat_.loc("u_points"), f.points ? 1 : 0);
   glUniform1f(splat_.loc("u_viewport_h"), static_cast<float>(h));
-  glUniform4f(splat_.loc("u_viewport"), 0, 0, static_cast<float>(w), static_cast<float>(h));
   glUniform1i(splat_.loc("u_scene_depth"), 1);
-  glUniform1i(splat_.loc("u_lut"), 0);
+  glUniform1i(splat_.loc("u_weighted"), f.weighted ? 1 : 0);
   f.draw_fluid();
   glDisablei(GL_BLEND, 0);
   glDisablei(GL_BLEND, 1);
   glBlendEquation(GL_FUNC_ADD);
   if (f.points) glDisable(GL_PROGRAM_POINT_SIZE);
   lap(&times_.splat_s);
+
+  // The fluid's rectangle at the surface resolution (one texel of margin for the rounding), and
+  // at the target's for the shading. Outside it the intermediate images are cleared, not drawn:
+  // on a software rasteriser a clear costs a fraction of a full-screen pass.
+  auto fit = [](int v, int from, int to) {
+    return std::clamp(static_cast<int>(std::floor(double(v) * to / from)), 0, to);
+  };
+  const int bx0 = std::max(fit(f.box[0], f.width, w) - 1, 0);
+  const int by0 = std::max(fit(f.box[1], f.height, h) - 1, 0);
+  const int bx1 = std::min(fit(f.box[2], f.width, w) + 2, w);
+  const int by1 = std::min(fit(f.box[3], f.height, h) + 2, h);
+  const bool boxed = bx0 > 0 || by0 > 0 || bx1 < w || by1 < h;
+  auto clear_outside = [&] {
+    if (!boxed) return;
+    glDisable(GL_SCISSOR_TEST);
+    glClearBufferfv(GL_COLOR, 0, zero);
+    glEnable(GL_SCISSOR_TEST);
+    glScissor(bx0, by0, std::max(bx1 - bx0, 0), std::max(by1 - by0, 0));
+  };
 
   // Smoothing: x then y.
   glBindVertexArray(empty_vao_);
@@ -106,11 +123,13 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   GLuint src = splat_target_.color();
   for (int round = 0; round < kSmoothRounds; ++round) {
     smooth_a_.bind(w, h);
+    clear_outside();
     bind_texture(0, src);
     glUniform1i(smooth_.loc("u_inverse"), round == 0 ? 1 : 0);
     glUniform2i(smooth_.loc("u_dir"), 1, 0);
     glDrawArrays(GL_TRIANGLES, 0, 3);
     smooth_b_.bind(w, h);
+    clear_outside();
     bind_texture(0, smooth_a_.color());
     glUniform1i(smooth_.loc("u_inverse"), 0);
     glUniform2i(smooth_.loc("u_dir"), 0, 1);
@@ -120,6 +139,7 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   lap(&times_.smooth_s);
 
   normal_target_.bind(w, h);
+  clear_outside();
   normal_.use();
   bind_texture(0, smooth_b_.color());
   glUniform1i(normal_.loc("u_depth"), 0);
@@ -130,6 +150,12 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   // Shading into the target at full resolution, with depth.
   glBindFramebuffer(GL_FRAMEBUFFER, f.target_fbo);
   glViewport(0, 0, f.width, f.height);
+  glEnable(GL_SCISSOR_TEST);
+  {
+    const int x0 = std::clamp(f.box[0] - 1, 0, f.width), y0 = std::clamp(f.box[1] - 1, 0, f.height);
+    const int x1 = std::clamp(f.box[2] + 1, 0, f.width), y1 = std::clamp(f.box[3] + 1, 0, f.height);
+    glScissor(x0, y0, std::max(x1 - x0, 0), std::max(y1 - y0, 0));
+  }
   glEnable(GL_DEPTH_TEST);
   glDepthFunc(GL_ALWAYS);
   glDepthMask(GL_TRUE);
@@ -162,6 +188,7 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   glUniform1f(shade_.loc("u_radius"), r);
   glUniform1i(shade_.loc("u_output"), output_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
+  glDisable(GL_SCISSOR_TEST);
   glDepthFunc(GL_LESS);
   bind_texture(3, 0);
   bind_texture(2, 0);

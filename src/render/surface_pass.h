@@ -8,10 +8,13 @@
 //              soft additive splats summing to the depth of water along each ray;
 //   smooth     a separable bilateral filter of the depth, x then y, radius ∝ screen size;
 //   normal     normals from the smoothed depth, stored with it;
-//   shade      full resolution into the target: Fresnel mix of a sky gradient and the
-//              refracted scene, Beer–Lambert absorption, highlight, spray; writes depth so
-//              later geometry (walls, boundary particles) sorts with it.
-// The fluid passes run at RenderSettings::surface_scale of the frame's resolution.
+//   shade      full resolution into the target (which holds the opaque scene), where there is
+//              water: Fresnel mix of a sky gradient and the refracted scene, Beer–Lambert
+//              absorption, highlight, spray; writes depth so later geometry (walls, boundary
+//              particles) sorts with it.
+// The fluid passes run at RenderSettings::surface_scale of the frame's resolution; the passes
+// after the splats only inside the screen rectangle of the fluid's bounding box (scissor).
+#include <array>
 #include <functional>
 
 #include "render/math.h"
@@ -27,16 +30,23 @@ namespace rtsph::render {
 struct SurfacePassTimes {
   double scene_s = 0, splat_s = 0, smooth_s = 0, normal_s = 0, shade_s = 0;
   long frames = 0;
+  int width = 0, height = 0;  // the fluid passes' resolution in the last frame
 };
 
-/// What the surface needs of the frame; draw_fluid issues the fluid particles' draw call with
-/// the currently bound program (particle.vert's attributes and uniforms).
+/// What the surface needs of the frame; draw_fluid issues the fluid's splats' draw call with
+/// the currently bound program (surface_splat.vert's attributes: x, y, z and, when weighted,
+/// the splat's particle count).
 struct SurfaceFrame {
   Mat4 view, proj;
   int width = 1, height = 1;      // the target's size (pixels)
   GLuint target_fbo = 0;
   bool points = true;             // particles go out as point sprites
+  bool weighted = false;          // draw_fluid's attribute 3 holds splat weights (splat_batch.h)
   std::function<void()> draw_fluid;
+  // Target pixels (x0, y0, x1, y1) outside which there is no water: the passes after the splats
+  // skip the rest. The target already holds the opaque scene (the shading pass draws only
+  // where there is water).
+  std::array<int, 4> box{0, 0, 1 << 30, 1 << 30};
 };
 
 class SurfacePass {

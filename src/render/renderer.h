@@ -96,6 +96,7 @@ class Renderer {
   void upload_boundary(const BoundaryView* boundary);
   void draw_lines(const std::vector<LineVertex>& v, GLenum mode, const Mat4& mvp);
   void draw_overlay(const std::vector<OverlayVertex>& v, int width, int height);
+  /// The legend's overlay triangles (renderer_legend.cpp, with draw_legend and draw_overlay).
   void build_legend(int width, int height, const RenderSettings& s,
                     std::vector<OverlayVertex>* out) const;
   void set_particle_uniforms(const Camera& cam, const Mat4& view, const Mat4& proj, float radius,

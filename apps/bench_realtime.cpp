@@ -29,7 +29,7 @@ struct Probe {
 // A probe that has fallen three times behind real time stops early: its factor is known to be
 // well below 1, and a large slow probe would otherwise cost minutes.
 Probe probe(const BenchOptions& o, double n, int threads) {
-  auto sim = BackendSimulation::make(dam_break_with(o.dim, n, o.method), threads, o.backend);
+  auto sim = BackendSimulation::make(dam_break_with(o.dim, n, o.method, o.sets), threads, o.backend);
   Probe p;
   p.fluid = sim->stats().fluid_particles;
   const auto t0 = std::chrono::steady_clock::now();

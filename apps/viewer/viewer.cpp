@@ -150,6 +150,8 @@ void Viewer::follow_cloud() {
 }
 
 void Viewer::frame() {
+  pace_for_solver();
+  frame_start_ = now_s();
   timer_.start();
   if (!script_.empty()) run_script_step();
   // The GPU backend steps here, in this thread's context: at most about a 60th of a second per
@@ -250,13 +252,32 @@ void Viewer::frame() {
       scale_ = std::min(opt_.render_scale, 1.0f);
     else if (fps_ < 33)
       scale_ = std::max(0.35f, scale_ * float(std::clamp(std::sqrt(fps_ / 36), 0.7, 0.95)));
-    else if (fps_ > 48)
+    else if (fps_ > 48 && !solver_behind_)
       scale_ = std::min(1.0f, scale_ * 1.1f);
     sim_ms_per_frame_ = fps_frames_ ? 1000 * std::max(0.0, frame_.busy_s - fps_busy0_) / fps_frames_ : 0;
     fps_t0_ = t;
     fps_busy0_ = frame_.busy_s;
     fps_frames_ = 0;
   }
+}
+
+// Real time first. The solver thread and the drawing share the cores (llvmpipe draws on them
+// too), and a frame loop without vsync (Xvfb, --frames runs) draws as fast as it can, taking
+// cores the solver needs to keep up. While the solver is behind real time (its real-time factor
+// below 0.95, until it is back above 0.99) frames are held to kBehindFps, above the 30 fps the
+// viewer promises, and the adaptive resolution does not grow. 2026-11-24, 3D PBF dam break at
+// 7,020 particles under Xvfb: docs/performance.md.
+void Viewer::pace_for_solver() {
+  const bool running = !backend_.on_caller_thread && !runner_->paused() && frame_.rtf > 0;
+  if (!running) {
+    solver_behind_ = false;
+    return;
+  }
+  if (frame_.rtf < 0.95) solver_behind_ = true;
+  else if (frame_.rtf > 0.99) solver_behind_ = false;
+  if (!solver_behind_ || frame_start_ == 0) return;
+  const double wait = frame_start_ + 1.0 / kBehindFps - now_s();
+  if (wait > 0) std::this_thread::sleep_for(std::chrono::duration<double>(wait));
 }
 
 int Viewer::run() {

@@ -74,6 +74,7 @@ class Viewer {
   void upload_frame();
   SimSpec for_viewer(const SimSpec& scene, const std::vector<std::string>& sets);
   void frame();
+  void pace_for_solver();
   void follow_cloud();  // open space: the camera's target moves with the fluid's centre
   void draw_ui();
   void draw_parameters();
@@ -141,6 +142,11 @@ class Viewer {
   double fps_ = 0, sim_ms_per_frame_ = 0;
   double fps_t0_ = 0, fps_busy0_ = 0;
   long fps_frames_ = 0, frames_total_ = 0;
+  // Real time first (pace_for_solver): frames are held to kBehindFps while the solver thread
+  // is behind real time.
+  static constexpr double kBehindFps = 34;
+  bool solver_behind_ = false;
+  double frame_start_ = 0;
   double run_t0_ = 0;
   std::vector<float> e_kin_, e_pot_, e_tot_;
   double e_pot0_ = 0;

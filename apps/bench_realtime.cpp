@@ -98,6 +98,7 @@ int bench_realtime(const BenchOptions& o) {
     j["threads"] = threads;
     j["backend"] = o.backend;
     j["window_s"] = o.window_s;
+    j["set"] = o.sets;
     j["capacity_fluid_particles"] = best;
     j["probes"] = rows;
     io::write_file_atomic(o.json, [&](std::ostream& os) { os << j.dump(2) << "\n"; });

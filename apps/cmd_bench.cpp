@@ -108,6 +108,7 @@ int bench(const BenchOptions& o) {
     j["threads"] = threads;
     j["backend"] = o.backend;
     j["steps"] = o.steps;
+    j["set"] = o.sets;
     j["rows"] = rows;
     io::write_file_atomic(o.json, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
   }

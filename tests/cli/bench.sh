@@ -28,7 +28,25 @@ for p in j["probes"]:
     assert p["steps"] > 0 and p["sim_s"] > 0 and p["wall_s"] > 0
 PY
 
+# --set is applied to the benched scene (a bad value is refused below) and the JSON records it.
+"$rtsph" bench --dim 2 --method pbf --particles 500 --steps 3 --set solver.pbf.substeps=1 --json s.json >/dev/null
+python3 - <<'PY' || fail "bench --set: not recorded in the JSON"
+import json
+j = json.load(open("s.json"))
+assert j["set"] == ["solver.pbf.substeps=1"], j
+PY
+
 # Bad input: one line, exit 2.
+for args in "--set fluid.spacing=0.1" "--set solver.method=pbf" "--set solver.pbf.substeps=0" "--set nope=1" \
+            "--gravity tree --set solver.pbf.substeps=2"; do
+  set +e
+  "$rtsph" bench --particles 500 --steps 1 $args 2>err.txt >out.txt
+  rc=$?
+  set -e
+  [ $rc -eq 2 ] || fail "bench $args exited $rc, expected 2"
+  [ "$(wc -l <err.txt)" -eq 1 ] || { cat err.txt; fail "bench $args: expected one line"; }
+  [ ! -s out.txt ] || { cat out.txt; fail "bench $args: printed a table before refusing"; }
+done
 set +e
 "$rtsph" bench --method nope 2>err.txt >/dev/null
 rc=$?

@@ -64,6 +64,9 @@ int render_scene(const RenderJob& job) {
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", job.size));
   render::RenderSettings settings = parse_render_options(job.style, job.color, job.display, job.colormap);
   settings.time_passes = job.time_passes;
+  // Offline frames have no frame-rate budget: the fluid passes run at the image's resolution
+  // (at the viewer's half, a 640x360 image drew spray as squares of 2x2-texel blocks).
+  settings.surface_scale = 1.0f;
   gas_defaults(spec, job.style_given, job.color_given, &settings);
   if (job.range_max > job.range_min) {
     settings.auto_range = false;

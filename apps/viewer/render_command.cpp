@@ -49,6 +49,11 @@ bool ends_with(const std::string& s, const std::string& suffix) {
 }
 void print_pass_times(const render::SurfacePassTimes& t, std::size_t splats) {
   const double n = double(std::max(t.frames, 1L));
+  if (t.dimension == 2) {
+    std::fprintf(stderr, "rtsph render: 2D surface passes over %ld frames, ms/frame: splat %.2f, shade %.2f (at %dx%d)\n",
+                 t.frames, 1e3 * t.splat_s / n, 1e3 * t.shade_s / n, t.width, t.height);
+    return;
+  }
   std::fprintf(stderr, "rtsph render: surface passes over %ld frames, ms/frame: scene %.2f, splat %.2f, smooth %.2f, normal %.2f, shade %.2f (last frame: %zu splats)\n",
                t.frames, 1e3 * t.scene_s / n, 1e3 * t.splat_s / n, 1e3 * t.smooth_s / n,
                1e3 * t.normal_s / n, 1e3 * t.shade_s / n, splats);

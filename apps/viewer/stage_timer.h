@@ -44,7 +44,11 @@ class StageTimer {
   void print(const render::SurfacePassTimes& t, std::size_t splats) const {
     std::printf("viewer: ms/frame over %ld frames (glFinish between stages):", counted());
     for (int i = 0; i < kCount; ++i) std::printf(" %s %.2f", kNames[i], ms(Stage(i)));
-    if (t.frames > 0) {
+    if (t.frames > 0 && t.dimension == 2) {
+      const double n = double(t.frames);
+      std::printf("; 2D surface passes (within scene, at %dx%d): splat %.2f, shade %.2f", t.width,
+                  t.height, 1e3 * t.splat_s / n, 1e3 * t.shade_s / n);
+    } else if (t.frames > 0) {
       const double n = double(t.frames);
       std::printf("; surface passes (within scene, last at %dx%d): scene %.2f, splat %.2f, "
                   "smooth %.2f, normal %.2f, shade %.2f; %zu splats", t.width, t.height,

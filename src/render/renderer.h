@@ -81,7 +81,9 @@ class Renderer {
   std::size_t solid_count() const { return solids_.count(); }
   /// Surface style: CPU time per pass (RenderSettings::time_passes) and the test output switch
   /// (0 shaded, 1 world normals as colour).
-  const SurfacePassTimes& surface_times() const { return surface_->times(); }
+  const SurfacePassTimes& surface_times() const {
+    return last_surface_2d_ ? surface2d_->times() : surface_->times();
+  }
   void set_surface_output(int output) { surface_->set_output(output); }
   /// Points the last 3D surface frame splatted (splat_batch.h; 0 before one was drawn).
   std::size_t splat_count() const { return splats_.size(); }
@@ -116,6 +118,7 @@ class Renderer {
   SolidPass solids_;
   std::unique_ptr<SurfacePass> surface_;
   std::unique_ptr<Surface2dPass> surface2d_;
+  bool last_surface_2d_ = false;  // the last surface drawn was the 2D one (surface_times)
   GLuint fluid_vao_ = 0, fluid_vbo_ = 0;
   GLuint boundary_vao_ = 0, boundary_vbo_ = 0;
   GLuint line_vao_ = 0, line_vbo_ = 0;

@@ -88,7 +88,9 @@ int Renderer::draw_surface(const Camera& cam, const Mat4& view, const Mat4& proj
     f.weighted = batched;
     if (fluid_box_) f.box = screen_box(view, proj, width, height, 2 * s.particle_radius);
     calls = surface_->draw(f, s);
+    last_surface_2d_ = false;
   } else {
+    last_surface_2d_ = true;
     calls = surface2d_->draw(view, proj, width, height, target_fbo, points, s, draw_fluid);
   }
   glBindFramebuffer(GL_FRAMEBUFFER, target_fbo);

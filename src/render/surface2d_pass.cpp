@@ -21,6 +21,9 @@ int Surface2dPass::draw(const Mat4& view, const Mat4& proj, int width, int heigh
   // A filled square lattice of spacing a sums the kernel to (1/a²)∫w dA = π h² / (4 a²).
   const float norm = 4.0f * spacing * spacing / (3.14159265f * h * h);
 
+  clock_.begin(s.time_passes);
+  times_.width = width;
+  times_.height = height;
   field_.bind(width, height);
   glClearColor(0, 0, 0, 0);
   glClear(GL_COLOR_BUFFER_BIT);
@@ -41,6 +44,7 @@ int Surface2dPass::draw(const Mat4& view, const Mat4& proj, int width, int heigh
   glUniform1f(splat_.loc("u_norm"), norm);
   glUniform1f(splat_.loc("u_drop"), 0.6f * s.particle_radius / h);
   draw_fluid();
+  clock_.lap(&times_.splat_s);
   if (points) glDisable(GL_PROGRAM_POINT_SIZE);
   glBlendEquation(GL_FUNC_ADD);
 
@@ -55,6 +59,8 @@ int Surface2dPass::draw(const Mat4& view, const Mat4& proj, int width, int heigh
   glBindVertexArray(empty_vao_);
   glDrawArrays(GL_TRIANGLES, 0, 3);
   glBindTexture(GL_TEXTURE_2D, 0);
+  clock_.lap(&times_.shade_s);
+  clock_.end_frame(&times_.frames);
   return 2;
 }
 

@@ -8,6 +8,7 @@
 #include <functional>
 
 #include "render/math.h"
+#include "render/pass_clock.h"
 #include "render/render_settings.h"
 #include "render/shader.h"
 #include "render/surface_target.h"
@@ -27,11 +28,15 @@ class Surface2dPass {
   /// and fills the contour into target_fbo (width × height). Returns the draw calls.
   int draw(const Mat4& view, const Mat4& proj, int width, int height, GLuint target_fbo,
            bool points, const RenderSettings& s, const std::function<void()>& draw_fluid);
+  /// RenderSettings::time_passes: the splat and shade passes' CPU time.
+  const SurfacePassTimes& times() const { return times_; }
 
  private:
   Program splat_, shade_;
   TextureTarget field_;
   GLuint empty_vao_ = 0;
+  PassClock clock_;
+  SurfacePassTimes times_{.dimension = 2};
 };
 
 }  // namespace rtsph::render

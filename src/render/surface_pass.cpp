@@ -1,7 +1,6 @@
 #include "render/surface_pass.h"
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 
 namespace rtsph::render {
@@ -9,9 +8,6 @@ namespace rtsph::render {
 namespace {
 constexpr int kSmoothRounds = 1;
 constexpr float kDepthSplat = 1.5f;  // depth splat radius over the particle radius
-double now_s() {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count();
-}
 void bind_texture(int unit, GLuint tex) {
   glActiveTexture(GL_TEXTURE0 + unit);
   glBindTexture(GL_TEXTURE_2D, tex);
@@ -35,20 +31,8 @@ SurfacePass::SurfacePass()
 
 SurfacePass::~SurfacePass() { glDeleteVertexArrays(1, &empty_vao_); }
 
-void SurfacePass::lap(double* into) {
-  if (!timing_) return;
-  glFinish();
-  const double t = now_s();
-  if (warm_) *into += t - t_last_;  // the first frame compiles the shaders: not counted
-  t_last_ = t;
-}
-
 void SurfacePass::begin_scene(int width, int height, bool time_passes) {
-  timing_ = time_passes;
-  if (timing_) {
-    glFinish();
-    t_last_ = now_s();
-  }
+  clock_.begin(time_passes);
   scene_.bind(width, height);
 }
 
@@ -195,8 +179,7 @@ int SurfacePass::draw(const SurfaceFrame& f, const RenderSettings& s) {
   bind_texture(1, 0);
   glActiveTexture(GL_TEXTURE0);
   lap(&times_.shade_s);
-  if (timing_ && warm_) ++times_.frames;
-  warm_ = true;
+  clock_.end_frame(&times_.frames);
   return 3 + 2 * kSmoothRounds;
 }
 

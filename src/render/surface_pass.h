@@ -18,20 +18,12 @@
 #include <functional>
 
 #include "render/math.h"
+#include "render/pass_clock.h"
 #include "render/render_settings.h"
 #include "render/shader.h"
 #include "render/surface_target.h"
 
 namespace rtsph::render {
-
-/// CPU time of each pass, summed over `frames` (RenderSettings::time_passes; glFinish between
-/// passes, so the sum exceeds the pipelined frame time a little; the first frame, which
-/// compiles the shaders, is not counted).
-struct SurfacePassTimes {
-  double scene_s = 0, splat_s = 0, smooth_s = 0, normal_s = 0, shade_s = 0;
-  long frames = 0;
-  int width = 0, height = 0;  // the fluid passes' resolution in the last frame
-};
 
 /// What the surface needs of the frame; draw_fluid issues the fluid's splats' draw call with
 /// the currently bound program (surface_splat.vert's attributes: x, y, z and, when weighted,
@@ -66,15 +58,13 @@ class SurfacePass {
   const SurfacePassTimes& times() const { return times_; }
 
  private:
-  void lap(double* into);
+  void lap(double* into) { clock_.lap(into); }
 
   Program splat_, smooth_, normal_, shade_;
   TextureTarget scene_, splat_target_, smooth_a_, smooth_b_, normal_target_;
   GLuint empty_vao_ = 0;
   int output_ = 0;
-  bool timing_ = false;
-  bool warm_ = false;  // a frame has been drawn
-  double t_last_ = 0;
+  PassClock clock_;
   SurfacePassTimes times_;
 };
 

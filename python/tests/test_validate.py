@@ -87,3 +87,34 @@ def test_virial_pressure_of_a_uniform_lattice_is_the_eos_pressure(dim):
     assert vc < 0  # cohesion is a tension in the bulk
     vp0, vc0 = _virial_pressures(grid, rho, p, inner, s, 1000.0 * s ** dim, 0.0, dim)
     assert vc0 == 0 and vp0 == vp
+
+
+# The two issue-13 cases' references and scenes: the incompressible ellipse keeps its area and
+# starts as the free strain b = R e^{A0 t}; the Couette series starts at rest and ends linear.
+def test_elliptical_drop_reference():
+    import numpy as np
+    from rtsph.validate.cases import elliptical_drop_exact
+    t = np.array([0.0, 1e-5, 0.004, 0.008])
+    A, a, b = elliptical_drop_exact(t).T
+    assert np.allclose(a * b, 1.0, atol=1e-9)
+    assert abs(b[1] / np.exp(100.0 * 1e-5) - 1) < 1e-6 and A[0] == 100.0
+    assert 1.99 < b[-1] < 2.01 and np.all(np.diff(A) < 0)
+
+
+def test_couette_reference():
+    import numpy as np
+    from rtsph.validate.cases import couette_exact
+    y = np.linspace(0.1e-3, 0.9e-3, 9)
+    assert np.max(np.abs(couette_exact(y, 0.0))) < 0.01 * 2.5e-5
+    assert np.allclose(couette_exact(y, 10.0), 2.5e-5 * y / 1e-3, rtol=1e-9)
+
+
+def test_issue_13_cases_run():
+    import numpy as np
+    r = validate.CASES["elliptical_drop_2d"]("dfsph", "quick", 2)
+    assert r.passed and r.tolerance == 0.02 and list(r.series)[:3] == ["t_s", "b_m", "b_exact_m"]
+    # The plate drags the fluid (with its top row culled it did not: 92%); the error left is the
+    # plate's no-slip point half a spacing above its face (docs/validation.md).
+    r = validate.CASES["couette_2d"]("wcsph", "quick", 2)
+    assert np.isfinite(r.error) and r.error < 0.15 and r.particles == 160
+    assert not validate.CASES["couette_2d"]("pbf", "quick", 2).applicable

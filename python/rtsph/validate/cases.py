@@ -585,6 +585,19 @@ def _semi_axes(x):
         2 * math.sqrt(float(np.mean(d[:, 1] ** 2)))
 
 
+def _track_semi_axes(sim, until: float, every: float):
+    """Runs sim to `until`, recording the time and the semi-axes (_semi_axes) every `every` s."""
+    T, AX, AY = [], [], []
+
+    def record(sm):
+        _, _, ax_, ay_ = _semi_axes(sm.positions.astype(np.float64))
+        T.append(sm.time)
+        AX.append(ax_)
+        AY.append(ay_)
+    sim.run(until=until, every=every, callback=record)
+    return np.array(T), np.array(AX), np.array(AY)
+
+
 def oscillating_droplet(method: str, level: str, threads: int) -> Result:
     R = DROPLET_R1
     s, _ = DROPLET_LEVELS[2][level]
@@ -597,15 +610,7 @@ def oscillating_droplet(method: str, level: str, threads: int) -> Result:
     period_ref = 2 * math.pi / math.sqrt(omega2) if omega2 > 0 else float("nan")
     sim = rtsph.Simulation(_droplet_scene(method, 2, R, s, OSC_NU, "validate_oscillating_droplet_2d", OSC_STRETCH),
                            threads=threads)
-    T, AX, AY = [], [], []
-
-    def record(sm):
-        _, _, ax_, ay_ = _semi_axes(sm.positions.astype(np.float64))
-        T.append(sm.time)
-        AX.append(ax_)
-        AY.append(ay_)
-    sim.run(until=t_osc, every=0.005, callback=record)
-    T, AX, AY = map(np.array, (T, AX, AY))
+    T, AX, AY = _track_semi_axes(sim, until=t_osc, every=0.005)
     # Period from the crossings of a_x − a_y through its mean (mode 2: the axes swap each half
     # period; the mean is 0 for a drop that relaxes to a circle, and a shape that locks short of
     # round still gives the period of what it does).
@@ -698,15 +703,7 @@ def _elliptical_drop_run(method, s, threads):
     x = sim.positions.astype(np.float64)
     c = x.mean(0)
     sim.set_velocities(np.stack([-ELL_A0 * (x[:, 0] - c[0]), ELL_A0 * (x[:, 1] - c[1])], 1))
-    T, AX, AY = [], [], []
-
-    def record(sm):
-        _, _, ax_, ay_ = _semi_axes(sm.positions.astype(np.float64))
-        T.append(sm.time)
-        AX.append(ax_)
-        AY.append(ay_)
-    sim.run(until=ELL_T, every=ELL_SAMPLE, callback=record)
-    T = np.array(T)
+    T, AX, AY = _track_semi_axes(sim, until=ELL_T, every=ELL_SAMPLE)
     a = np.array(AX) / AX[0] * R
     b = np.array(AY) / AY[0] * R
     ex = elliptical_drop_exact(T)

@@ -6,6 +6,7 @@
 #include <array>
 #include <cmath>
 #include <filesystem>
+#include <numbers>
 #include <random>
 #include <unordered_map>
 
@@ -222,6 +223,45 @@ TEST_F(GpuBackend, MovingObstaclePushesTheFluid) {
   EXPECT_NEAR(g, c, 0.05 * c);
   EXPECT_NEAR(gpu->obstacle_center(0)[0], 0.1 + 0.5 * gpu->time(), 1e-9);  // its prescribed path
   EXPECT_NEAR(gpu->obstacle_center(0)[0], cpu->obstacle_center(0)[0], 1e-6);
+}
+
+// A thin paddle spinning a quarter turn in a closed tank drags the water through the viscous
+// term, whose no-slip extrapolation reads each paddle sample's face normal: the GPU turns the
+// normals with the pose (move_boundary.comp) as the CPU does, so the water's angular momentum
+// about the paddle's axis agrees.
+TEST_F(GpuBackend, SpinningPaddleDragsTheWaterAsOnTheCpu) {
+  SimSpec spec = test::tank(2, 0.2, 0.2, 0.01);
+  spec.domain_max[1] = 0.2;  // full: no free surface
+  spec.gravity = {};
+  spec.viscosity = 1e-2;
+  spec.artificial_viscosity = 0;
+  ObstacleSpec paddle;
+  paddle.shape = ObstacleShape::Box;
+  paddle.center = {{0.1, 0.1, 0}};
+  paddle.half_extents = {{0.06, 0.01, 0}};  // two spacings thick
+  paddle.motion = MotionKind::Velocity;
+  const double omega = 16;  // rad/s: the tips at ~1 m/s
+  paddle.angular_velocity = {{0, 0, omega}};
+  spec.obstacles.push_back(paddle);
+  auto cpu = make_simulation(spec, 2);
+  auto gpu = gpu::make_gpu_simulation(spec, 2);
+  const double T = 0.5 * std::numbers::pi / omega;
+  while (cpu->time() < T) cpu->step();
+  while (gpu->time() < T) gpu->step();
+  auto spin = [&](const Simulation& s) {  // Σ (x − c) × v per unit mass
+    const ParticleView v = s.fluid();
+    double l = 0;
+    for (std::size_t i = 0; i < v.count; ++i)
+      l += (v.x[0][i] - paddle.center[0]) * v.v[1][i] - (v.x[1][i] - paddle.center[1]) * v.v[0][i];
+    return l;
+  };
+  const double c = spin(*cpu), g = spin(*gpu);
+  std::printf("t = %.4f s (CPU %.4f s): water's angular momentum %.5f (CPU) %.5f (GPU) m^2/s\n", gpu->time(),
+              cpu->time(), c, g);
+  EXPECT_GT(c, 0.0);
+  // Measured 4.88510 both (llvmpipe); with the body-frame normals left unturned on the GPU,
+  // 4.73890 (−3.0%).
+  EXPECT_NEAR(g, c, 0.005 * c);
 }
 
 // Checkpoints are the CPU's format: a GPU run resumes on the CPU and a CPU run on the GPU, and

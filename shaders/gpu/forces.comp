@@ -4,8 +4,9 @@
 //         - sum_b Psi_b (P_i + P_b + Pi_ib) grad W_ib + beta-extrapolated wall viscosity
 //         + g + brush
 // with v_ij = v_i - v_j, Monaghan's Pi_ij = -alpha c0 h (v_ij.r_ij) / (rho_ij (r^2 + 0.01h^2)) for
-// approaching pairs, and the no-slip factor beta = 1 + d_b/d_i on container walls (Morris, Fox &
-// Zhu 1997, eqs. 30-31; d_i floored at a quarter spacing).
+// approaching pairs, and the no-slip factor beta = 1 + d_b/d_i on container walls and obstacle
+// faces, for particles in front of the sample (Morris, Fox & Zhu 1997, eqs. 30-31; d_i floored
+// at a quarter spacing).
 BUFFER_POS BUFFER_VEL BUFFER_ACC BUFFER_DENS BUFFER_FKEY BUFFER_FSTART BUFFER_BPOS BUFFER_BVEL BUFFER_BNORMAL BUFFER_BSTART BUFFER_BPRESS
 void main() {
   uint i = gl_GlobalInvocationID.x;
@@ -44,8 +45,9 @@ void main() {
       float pib = Pi + bpress[j];
       if (vr < 0.0) pib += -P.ach * vr * inv * iri;
       float depth = bv.w;
-      float dn = dot(bnormal[j].xyz, d) - depth;
-      float beta = depth > 0.0 ? 1.0 + depth / (dn > P.dmin ? dn : P.dmin) : 1.0;
+      float front = dot(bnormal[j].xyz, d);  // > 0: x_i lies in front of the sample's face
+      float dn = front - depth;
+      float beta = depth > 0.0 && front > 0.0 ? 1.0 + depth / (dn > P.dmin ? dn : P.dmin) : 1.0;
       float lam = beta * b.w * P.nu * (2.0 * iri) * G * r2 * inv;
       a += (-b.w * pib * G) * d + lam * vib;
     }

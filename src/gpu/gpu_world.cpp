@@ -10,6 +10,8 @@
 
 namespace rtsph::gpu {
 
+static_assert(RTSPH_FACE_RADIAL == kRadialFace, "layout.h's radial face code is geometry.h's");
+
 namespace {
 using glsl::SphParams;
 using glsl::vec4;
@@ -230,7 +232,13 @@ void GpuWorld<D>::upload_boundary() {
     x[i] = {xs[0], xs[1], xs[2], b.psi[i]};
     v[i] = {vs[0], vs[1], vs[2], ctx.wall_depth[i]};
     nrm[i] = {ns[0], ns[1], ns[2], float(b.owner[i])};
-    loc[i] = {ls[0], ls[1], ls[2], 0};
+    float face = 0;  // the body-frame normal move_boundary rotates (the CPU's choice of face)
+    if (b.owner[i] >= 0) {
+      const auto o = std::size_t(b.owner[i]);
+      face = float(obstacle_surface_point(this->spec_.obstacles[o], Vec3d{{ls[0], ls[1], ls[2]}}, D,
+                                          this->obstacle_skip_axes_[o]).face);
+    }
+    loc[i] = {ls[0], ls[1], ls[2], face};
   }
   for (Buffer* buf : {&bpos_, &bvel_, &bnormal_, &blocal_, &bpos_alt_, &bvel_alt_, &bnormal_alt_, &blocal_alt_})
     buf->reserve(n * sizeof(vec4));

@@ -30,9 +30,9 @@ struct alignas(32) dvec4 { double x, y, z, w; };
 #define RTSPH_B_FKEY 5       // uint: cell key of each fluid particle (sorted)
 #define RTSPH_B_FSTART 6     // uint: first fluid particle of each cell; cells + 1 entries
 #define RTSPH_B_BPOS 7       // vec4: boundary x, w = Psi (kg, Akinci 2012)
-#define RTSPH_B_BVEL 8       // vec4: boundary v, w = wall depth (m; 0 for obstacle samples)
+#define RTSPH_B_BVEL 8       // vec4: boundary v, w = depth behind the wall plane (m; fixed in the body)
 #define RTSPH_B_BNORMAL 9    // vec4: wall normal into the fluid, w = owner (-1 wall, else obstacle)
-#define RTSPH_B_BLOCAL 10    // vec4: position in the owner's body frame
+#define RTSPH_B_BLOCAL 10    // vec4: position in the owner's body frame, w = face (below)
 #define RTSPH_B_BSTART 11    // uint: first boundary sample of each cell
 #define RTSPH_B_BPRESS 12    // float: p_b/rho0^2 extrapolated from the fluid (Adami 2012)
 #define RTSPH_B_OBSTACLES 13 // Obstacle per obstacle
@@ -90,6 +90,11 @@ struct SphParams {
   float dt, kick_dt, put_back_margin, pad0;  // s, s (the kick before the drift), m
   uint fluid_count, boundary_count, flags, obstacle_count;
 };
+
+// An obstacle sample's face, blocal.w (obstacle_surface_point's `face`): 0 none, +-(k+1) the
+// body-frame normal +-e_k, RTSPH_FACE_RADIAL the normalised body-frame position. move_boundary
+// rotates it with the pose into bnormal.xyz.
+#define RTSPH_FACE_RADIAL 4
 
 // A rigid obstacle's pose and motion for the boundary transform (rows of R: body -> world).
 struct Obstacle {

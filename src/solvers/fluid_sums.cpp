@@ -153,11 +153,15 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
                 // extrapolated through the wall, vᵢ − v_b → β(vᵢ − v_b), β = 1 + d_b/dᵢ
                 // (d: distances to the plane; Morris, Fox & Zhu 1997, eqs. 30-31, with the
                 // floor on dᵢ above). Without it the flow slips half a spacing into the wall.
+                // Only for a particle in front of the sample (n·(xᵢ − x_b) > 0): behind it, the
+                // sample's face is not the one facing the particle (the far face of a thin
+                // obstacle), and the floor would turn β into 1 + d_b/dmin.
                 const f8 depth = simd::at(pa.wall_depth, j);
                 f8 dn = f8{};
                 for (int k = 0; k < D; ++k) dn += simd::at(pa.wall_normal[k], j) * d[k];
                 const f8 di = dn - depth;
-                const f8 beta = simd::select(depth > 0.0f, 1.0f + depth * simd::rcp(simd::select(di > dmin, di, f8{} + dmin)),
+                const f8 beta = simd::select((depth > 0.0f) & (dn > 0.0f),
+                                             1.0f + depth * simd::rcp(simd::select(di > dmin, di, f8{} + dmin)),
                                              f8{} + 1.0f);
                 lam = simd::select(m, beta * w * nu * (2.0f * iri) * G * r2 * inv, f8{});
               }

@@ -32,6 +32,7 @@ FluidWorld<D>::FluidWorld(const SimSpec& spec, int threads) : spec_(spec), pool_
     st.velocity = o.motion == MotionKind::Velocity ? o.velocity : Vec3d{};
     st.angular_velocity = o.motion == MotionKind::Velocity ? o.angular_velocity : Vec3d{};
     obstacles_.push_back(st);
+    obstacle_skip_axes_.push_back(obstacle_seamless_axes(spec_, o));
     boundary_moving_ |= o.motion != MotionKind::Static;
   }
   build_boundary();
@@ -364,16 +365,22 @@ void FluidWorld<D>::sort_boundary_by_cell() {
 }
 
 // A container-wall sample lies outside the domain box; the face it lies furthest beyond is its
-// wall plane (corner samples pick one face). Obstacle samples get depth 0: no extrapolation.
+// wall plane (corner samples pick one face). An obstacle sample lies inside its body; the face
+// it lies nearest below is its wall plane (obstacle_wall_geometry). Per sample, so any thread
+// count gives the same bits.
 template <int D>
 void FluidWorld<D>::compute_wall_geometry() {
   const std::size_t n = boundary_.size();
   for (int k = 0; k < D; ++k) ctx_.wall_normal[k].resize(n);
   ctx_.wall_depth.resize(n);
-  for (std::size_t b = 0; b < n; ++b) {
-    int axis = -1;
-    Real depth = 0, sign = 0;
-    if (boundary_.owner[b] < 0) {
+  pool_.parallel_for(n, [&](std::size_t first, std::size_t last) {
+    for (std::size_t b = first; b < last; ++b) {
+      if (boundary_.owner[b] >= 0) {
+        obstacle_wall_geometry(b);
+        continue;
+      }
+      int axis = -1;
+      Real depth = 0, sign = 0;
       for (int k = 0; k < D; ++k) {
         if (ctx_.boundary_grid.periodic(k)) continue;
         const Real below = Real(prm_.domain_min[k]) - boundary_.x[k][b];
@@ -381,10 +388,10 @@ void FluidWorld<D>::compute_wall_geometry() {
         if (below > depth) { depth = below; axis = k; sign = 1; }
         if (above > depth) { depth = above; axis = k; sign = -1; }
       }
+      for (int k = 0; k < D; ++k) ctx_.wall_normal[k][b] = k == axis ? sign : Real(0);
+      ctx_.wall_depth[b] = axis >= 0 ? depth : Real(0);
     }
-    for (int k = 0; k < D; ++k) ctx_.wall_normal[k][b] = k == axis ? sign : Real(0);
-    ctx_.wall_depth[b] = axis >= 0 ? depth : Real(0);
-  }
+  });
 }
 
 template <int D>

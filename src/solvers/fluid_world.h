@@ -36,9 +36,11 @@ struct StepContext {
   AlignedArray<Real> p_over_rho2;  // pᵢ/ρᵢ² (or a method's equivalent), symmetric pressure term
   AlignedArray<Real> inv_rho;      // 1/ρᵢ, Morris viscosity
   AlignedArray<Real> boundary_p_over_rho2;  // p_b/ρ0² extrapolated from the fluid (Adami 2012)
-  // Container-wall samples: the unit normal into the fluid and the sample's depth behind the
-  // wall plane (m); zero for obstacle samples. For the no-slip extrapolation of the viscous
-  // term (Morris et al. 1997). Derived from positions after every boundary sort.
+  // Boundary samples: the unit normal into the fluid and the sample's depth behind the wall
+  // plane (m), for the no-slip extrapolation of the viscous term (Morris et al. 1997). Container
+  // walls: from positions, after every boundary sort. Obstacles: the nearest face of the body
+  // (obstacle_surface_point), its normal rotated to the current pose after every sort and
+  // every obstacle move.
   AlignedArray<Real> wall_normal[D];
   AlignedArray<Real> wall_depth;
   AlignedArray<Real> surface_normal[D];  // Akinci 2013's nᵢ (or the shift δrᵢ), only when on
@@ -272,6 +274,7 @@ class FluidWorld : public Simulation {
   FluidParticles<D> fluid_;
   BoundaryParticles<D> boundary_;
   std::vector<ObstacleState> obstacles_;
+  std::vector<unsigned> obstacle_skip_axes_;  // per obstacle: obstacle_seamless_axes (from the spec)
   std::vector<EmitterState> emitters_;
   StepContext<D> ctx_;
   Brush brush_;
@@ -290,6 +293,17 @@ class FluidWorld : public Simulation {
   void sort_fluid_by_cell();
   void sort_boundary_by_cell();
   void compute_wall_geometry();  // ctx_.wall_normal/wall_depth for the boundary's current order
+  /// ctx_.wall_normal/wall_depth of obstacle sample b (owner >= 0) at its owner's current pose.
+  void obstacle_wall_geometry(std::size_t b) {
+    const int o = boundary_.owner[b];
+    Vec3d local{};
+    for (int k = 0; k < D; ++k) local[k] = boundary_.local[k][b];
+    const SurfacePoint sp = obstacle_surface_point(spec_.obstacles[std::size_t(o)], local, D,
+                                                   obstacle_skip_axes_[std::size_t(o)]);
+    const Vec3d n = obstacles_[std::size_t(o)].pose.rotate(sp.normal);
+    for (int k = 0; k < D; ++k) ctx_.wall_normal[k][b] = Real(n[k]);
+    ctx_.wall_depth[b] = Real(sp.depth);
+  }
   void add_fluid_particle(const Vec<D>& x, const Vec<D>& v);
   template <bool kPressure, bool kViscosity, bool kExternal>
   void accelerations_impl(const ForceTerms& terms);

@@ -57,6 +57,9 @@ void FluidWorld<D>::move_obstacles(double t_new, double dt) {
         boundary_.x[k][i] = Real(x[k]);
         boundary_.v[k][i] = Real(v[k]);
       }
+      // The normal turns with the body (the depth does not): the viscous sum reads the current
+      // pose's even where no boundary sort follows this move.
+      obstacle_wall_geometry(i);
     }
   });
   stop_user_driven_obstacles();

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 namespace rtsph {
@@ -10,7 +11,7 @@ namespace {
 Vec3d cross(const Vec3d& a, const Vec3d& b) {
   return {{a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]}};
 }
-Vec3d rotate(const Vec3d& v, const Vec3d& k, double angle) {  // Rodrigues
+Vec3d rodrigues(const Vec3d& v, const Vec3d& k, double angle) {  // Rodrigues
   if (angle == 0) return v;
   const double c = std::cos(angle), s = std::sin(angle);
   return v * c + cross(k, v) * s + k * (dot(k, v) * (1 - c));
@@ -18,7 +19,8 @@ Vec3d rotate(const Vec3d& v, const Vec3d& k, double angle) {  // Rodrigues
 long lattice_count(double extent, double s) { return std::max(1L, std::lround(extent / s)); }
 }  // namespace
 
-Vec3d Pose::apply(const Vec3d& local) const { return center + rotate(local, axis, angle); }
+Vec3d Pose::apply(const Vec3d& local) const { return center + rodrigues(local, axis, angle); }
+Vec3d Pose::rotate(const Vec3d& v) const { return rodrigues(v, axis, angle); }
 
 Pose obstacle_pose(const ObstacleSpec& o, double t) {
   Pose p;
@@ -49,7 +51,7 @@ Pose obstacle_pose(const ObstacleSpec& o, double t) {
 }
 
 double obstacle_distance(const ObstacleSpec& o, const Pose& pose, const Vec3d& p, int dim) {
-  Vec3d q = rotate(p - pose.center, pose.axis, -pose.angle);
+  Vec3d q = rodrigues(p - pose.center, pose.axis, -pose.angle);
   if (dim == 2) q[2] = 0;
   if (o.shape == ObstacleShape::Sphere) return norm(q) - o.radius;
   double outside = 0, inside = -1e300;
@@ -59,6 +61,50 @@ double obstacle_distance(const ObstacleSpec& o, const Pose& pose, const Vec3d& p
     inside = std::max(inside, d);
   }
   return outside > 0 ? std::sqrt(outside) : inside;
+}
+
+SurfacePoint obstacle_surface_point(const ObstacleSpec& o, const Vec3d& local, int dim, unsigned skip_axes) {
+  SurfacePoint sp;
+  Vec3d q = local;
+  if (dim == 2) q[2] = 0;
+  if (o.shape == ObstacleShape::Sphere) {
+    const double r = norm(q);
+    if (!(r > 0)) return sp;  // the centre: no direction (never a sample: shells stay > s/4 out)
+    sp.normal = q / r;
+    sp.depth = std::max(0.0, o.radius - r);
+    sp.face = kRadialFace;
+    return sp;
+  }
+  double best = std::numeric_limits<double>::max();
+  for (int k = 0; k < dim; ++k) {
+    if (skip_axes & (1u << k)) continue;
+    const double gap = o.half_extents[k] - std::abs(q[k]);
+    if (gap < best) {
+      best = gap;
+      const double sign = q[k] < 0 ? -1.0 : 1.0;
+      sp.normal = Vec3d{};
+      sp.normal[k] = sign;
+      sp.face = q[k] < 0 ? -(k + 1) : k + 1;
+    }
+  }
+  if (sp.face != 0) sp.depth = std::max(0.0, best);
+  return sp;
+}
+
+unsigned obstacle_seamless_axes(const SimSpec& s, const ObstacleSpec& o) {
+  if (o.shape != ObstacleShape::Box) return 0;
+  const Pose pose = obstacle_pose(o, 0.0);
+  unsigned mask = 0;
+  for (int k = 0; k < s.dimension; ++k) {
+    Vec3d e{};
+    e[k] = 1;
+    const Vec3d w = pose.rotate(e);
+    for (int j = 0; j < s.dimension; ++j) {
+      if (!axis_is_periodic(s.periodic, j) || std::abs(w[j]) < 1 - 1e-9) continue;
+      if (2 * o.half_extents[k] >= s.domain_max[j] - s.domain_min[j] - 0.5 * s.spacing) mask |= 1u << k;
+    }
+  }
+  return mask;
 }
 
 namespace {

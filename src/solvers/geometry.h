@@ -13,6 +13,7 @@ struct Pose {
   Vec3d axis{0, 0, 1};
   double angle = 0;  // rad
   Vec3d apply(const Vec3d& local) const;
+  Vec3d rotate(const Vec3d& v) const;  // R · v: a body-frame direction (a normal) in the world
 };
 
 /// Pose of an obstacle at time t from its prescribed motion (static, velocity, keyframed path).
@@ -20,6 +21,26 @@ Pose obstacle_pose(const ObstacleSpec& o, double t);
 
 /// Signed distance from p to the obstacle surface at `pose` (negative inside).
 double obstacle_distance(const ObstacleSpec& o, const Pose& pose, const Vec3d& p, int dim);
+
+/// Where a point inside an obstacle lies below its surface, in the body frame: the outward unit
+/// normal of the nearest face and the depth below it (m, >= 0). Boxes: the face with the smallest
+/// gap he_k - |q_k| (ties go to the lowest axis, so corner samples pick one face, as the
+/// container's do; the depth is then at most the box's smallest half extent), skipping the body
+/// axes set in `skip_axes` (bit k: a box that spans a periodic axis has no face there). Spheres
+/// and circles: radial. `face` encodes the normal for the GPU, which rotates it with the pose:
+/// 0 none (depth 0), ±(k+1) ±e_k, kRadialFace the normalised local position.
+struct SurfacePoint {
+  Vec3d normal{};
+  double depth = 0;
+  int face = 0;
+};
+inline constexpr int kRadialFace = 4;
+SurfacePoint obstacle_surface_point(const ObstacleSpec& o, const Vec3d& local, int dim, unsigned skip_axes);
+
+/// Body axes of a box obstacle that have no faces: axis k maps (at the pose at t = 0) onto a
+/// periodic axis j and the box spans that period to within half a spacing, so its samples wrap
+/// without a seam (the Couette case's moving plate). Bit k set for such an axis.
+unsigned obstacle_seamless_axes(const SimSpec& s, const ObstacleSpec& o);
 
 /// Lattice points (cell centres at spacing s) filling each block, minus points closer than one
 /// spacing to an obstacle (their boundary particles sit on the surface).

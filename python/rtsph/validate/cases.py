@@ -840,8 +840,9 @@ def couette(method: str, level: str, threads: int) -> Result:
                "top_row_exact_over_v0": float(couette_exact([COUETTE_L - s / 2], t_end)[0] / COUETTE_V0)}
     r.notes = (f"top fluid row at t = {t_end:g} s: u = {r.extra['top_row_u_over_v0']:.4f} V0 (exact "
                f"{r.extra['top_row_exact_over_v0']:.4f}; no slip at the obstacle's first sample row, half a spacing "
-               f"above the plate, gives {(1 - s / (2 * COUETTE_L)) / (1 + s / (2 * COUETTE_L)):.4f}). Obstacle samples "
-               "get no velocity extrapolation through the wall (the container's walls do).")
+               f"above the plate, would give {(1 - s / (2 * COUETTE_L)) / (1 + s / (2 * COUETTE_L)):.4f}). The plate's "
+               "samples carry its nearest face's normal and their depth below it, so the viscous term extrapolates "
+               "their velocity through the face as for the container's walls.")
     if level == "full":
         for k in COUETTE_CONVERGENCE_N:
             r.convergence.append((COUETTE_L / k, worst if k == n else _couette_run(method, k, threads)[1]))

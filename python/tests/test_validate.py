@@ -118,3 +118,17 @@ def test_issue_13_cases_run():
     r = validate.CASES["couette_2d"]("wcsph", "quick", 2)
     assert r.passed and r.error < 0.005 and r.particles == 160
     assert not validate.CASES["couette_2d"]("pbf", "quick", 2).applicable
+
+
+def test_a_case_the_engine_cannot_build_says_why(monkeypatch):
+    """A case whose scene the installed engine rejects (an older build that lacks a newer
+    parameter) fails with the engine's message and the fix, not with a bare inf."""
+    import rtsph
+    from rtsph.validate import cases
+
+    def old_engine(method, level, threads):
+        return rtsph.scene("dam_break_2d", {"solver.no_such_parameter": 1})
+    monkeypatch.setitem(cases.CASES, "old_engine", old_engine)
+    r = cases.run_case("old_engine", "wcsph", "quick", 1)
+    assert r.metric == "(did not finish)" and not r.passed
+    assert "unknown key" in r.notes and "scripts/setup-python.sh" in r.notes

@@ -50,6 +50,8 @@ def main(argv=None) -> int:
             results.append(r)
             status = "n/a" if not r.applicable else ("pass" if r.passed else "FAIL")
             err = "" if not r.applicable else f" {r.error:.4g} (tolerance {r.tolerance:.4g})"
+            if r.metric == "(did not finish)":  # the engine's diagnostic, not a figure
+                err = f": did not finish: {r.notes}"
             print(f" {status}{err}, {r.particles} particles, {time.perf_counter() - t:.1f} s", file=sys.stderr)
     wall = time.perf_counter() - t0
     write_report(args.out, results, level, args.threads, wall)

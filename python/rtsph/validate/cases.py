@@ -886,8 +886,14 @@ def run_case(name: str, method: str, level: str, threads: int) -> Result:
     except (rtsph.InstabilityError, RuntimeError, ValueError) as e:
         # A case the method cannot run (the instability guard tripped, a solve gave up) fails
         # with the engine's diagnostic; the rest of the suite goes on.
+        notes = f"{type(e).__name__}: {e}"
+        if isinstance(e, rtsph.SceneError) and "unknown key" in str(e):
+            # The cases come with the package; an engine built from an older checkout does not
+            # know the keys newer cases set.
+            notes += (" (the installed rtsph package may be older than these cases: "
+                      "run scripts/setup-python.sh)")
         return Result(case=name, method=method, metric="(did not finish)", error=float("inf"), tolerance=0.0,
-                      notes=f"{type(e).__name__}: {e}", wall_s=time.perf_counter() - t0)
+                      notes=notes, wall_s=time.perf_counter() - t0)
     if r.convergence:
         r.extra["observed_order"] = _order(r.convergence)
     return r

@@ -16,6 +16,7 @@
 
 #include "core/aligned_array.h"
 #include "core/grid.h"
+#include "core/neighbour_list.h"
 #include "core/pair_loop.h"
 #include "core/parallel.h"
 #include "core/simd.h"
@@ -531,6 +532,52 @@ TYPED_TEST(GridTest, CandidateBatchMasksLanesPastRangeEnd) {
     check_batches(b, n, 0.1f, "pad n=" + std::to_string(n));
     if (::testing::Test::HasFatalFailure()) return;  // no earlier failures in these tests
   }
+}
+
+// NeighbourList (core/neighbour_list.h): each particle's list is exactly its brute-force
+// neighbour set (itself included), the lists lie back to back from slot 0, each starting at a
+// multiple of 8 and padded with i, and the whole layout is the same for 1 and 2 threads. A
+// dense cluster has more neighbours than the first guess of the stride, so the walk repeats.
+template <int D>
+void check_list(const Points<D>& pts, float cell, const std::string& what) {
+  Built<D> b;
+  build<D>(b, pts, vec<D>(0.0f), vec<D>(1.0f), cell, 1);
+  const std::size_t n = pts.size();
+  NeighbourList<D> one, two;
+  one.build(b.grid, b.ptr, n, cell * cell, ThreadPool(1));
+  two.build(b.grid, b.ptr, n, cell * cell, ThreadPool(2));
+  ASSERT_TRUE(one.valid()) << what;
+  std::size_t slot = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    ASSERT_EQ(one.first_slot(i), slot) << what << " particle " << i;
+    ASSERT_EQ(slot % 8, 0u) << what;
+    std::vector<uint32_t> want;
+    for (std::size_t j = 0; j < n; ++j)
+      if (dist2<D>(b.ptr, i, j) < cell * cell) want.push_back(uint32_t(j));
+    const uint32_t c = one.count(i);
+    std::vector<uint32_t> got(one.begin(i), one.begin(i) + c);
+    std::sort(got.begin(), got.end());
+    ASSERT_EQ(got, want) << what << " particle " << i;
+    const uint32_t padded = (c + 7u) & ~7u;
+    for (uint32_t s = c; s < padded; ++s) ASSERT_EQ(one.begin(i)[s], uint32_t(i)) << what;
+    ASSERT_EQ(two.first_slot(i), slot) << what;
+    ASSERT_EQ(two.count(i), c) << what;
+    for (uint32_t s = 0; s < padded; ++s) ASSERT_EQ(two.begin(i)[s], one.begin(i)[s]) << what;
+    slot += padded;
+  }
+  EXPECT_EQ(one.slots(), slot) << what;
+  EXPECT_EQ(two.slots(), slot) << what;
+}
+
+TYPED_TEST(GridTest, NeighbourListsArePackedAndMatchBruteForce) {
+  constexpr int D = TypeParam::D;
+  check_list<D>(uniform<D>(D == 2 ? 3000 : 4000, 0.0f, 1.0f, 31), 0.06f, "uniform");
+  // ~600 particles within one support radius: past the first stride (24 in 2D, 64 in 3D).
+  auto p = uniform<D>(600, 0.5f, 0.52f, 32);
+  auto q = uniform<D>(400, 0.0f, 1.0f, 33);
+  p.insert(p.end(), q.begin(), q.end());
+  check_list<D>(p, 0.05f, "cluster");
+  check_list<D>(Points<D>{}, 0.05f, "empty");
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cstring>
 
 #include "core/pair_loop.h"
 
@@ -20,10 +21,10 @@ void NeighbourList<D>::build(const UniformGrid<D>& grid, const Real* const xs[D]
   const uint32_t* cells = grid.sorted_cells();
   // One pass into a fixed stride; a particle with more neighbours than the stride grows it to
   // the largest count seen and the pass repeats (rare: compressed fluid). The result does not
-  // depend on the guess.
+  // depend on the guess. Then the lists are packed back to back.
   if (stride_ == 0) stride_ = D == 3 ? 64 : 24;
   for (;;) {
-    idx_.resize(n * stride_);
+    scratch_.resize(n * stride_);
     std::atomic<uint32_t> largest{0};
     const std::size_t stride = stride_;
     // The walk compiled for the grid's kind (plain or periodic), chosen once per build.
@@ -33,7 +34,7 @@ void NeighbourList<D>::build(const UniformGrid<D>& grid, const Real* const xs[D]
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = xs[k][i];
-        uint32_t* out = idx_.data() + i * stride;
+        uint32_t* out = scratch_.data() + i * stride;
         uint32_t c = 0;
         for_each_candidate_batch<D, decltype(periodic)::value>(grid, cells[i], xs, xi, r2,
                                     [&](uint32_t j, const f8*, f8, i8 m) {
@@ -66,6 +67,21 @@ void NeighbourList<D>::build(const UniformGrid<D>& grid, const Real* const xs[D]
     if (need <= stride_) break;
     stride_ = need;
   }
+  first_.resize(n + 1);
+  std::size_t slot = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    first_[i] = slot;
+    slot += (count_[i] + 7u) & ~7u;
+  }
+  first_[n] = slot;
+  slots_ = slot;
+  idx_.resize(slots_);
+  const std::size_t stride = stride_;
+  pool.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i)
+      std::memcpy(idx_.data() + first_[i], scratch_.data() + i * stride,
+                  (first_[i + 1] - first_[i]) * sizeof(uint32_t));
+  });
   valid_ = true;
 }
 

@@ -44,7 +44,8 @@ class Dfsph final : public FluidWorld<D> {
   // (both solves), so the sweeps read the kernel gradients from here instead of evaluating
   // them again: ∇Wᵢⱼ per listed pair (zero on masked lanes), and per particle the wall sums
   // Σ_b Ψ_b∇W_ib and Σ_b Ψ_b v_b·∇W_ib. Rebuilt by compute_factors(); never saved.
-  std::array<AlignedArray<Real>, D> pair_grad_, wall_grad_;
+  PairCache<D> pair_grad_;  // ∇Wᵢⱼ per listed pair
+  std::array<AlignedArray<Real>, D> wall_grad_;
   AlignedArray<Real> wall_rate_;
   double relax_ = 0.5;               // Jacobi ω, set once from the kernel (jacobi_relaxation)
   int density_iterations_ = 0, divergence_iterations_ = 0;

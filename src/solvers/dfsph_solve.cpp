@@ -100,14 +100,10 @@ void Dfsph<D>::compute_factors() {
   [[maybe_unused]] const Real* const psi = pa.psi;
   const uint32_t* const cells = pa.cells;
   const NeighbourList<D>& list = ctx_.fluid_list;  // current: every sort lists
-  const std::size_t stride = list.stride();
-  for (int k = 0; k < D; ++k) {
-    pair_grad_[k].resize(n * stride);
-    wall_grad_[k].resize(n);
-  }
+  pair_grad_.resize(list);
+  for (int k = 0; k < D; ++k) wall_grad_[k].resize(n);
   wall_rate_.resize(n);
-  Real* grad_out[D];  // hoisted: the loop's stores then cannot be taken to move the arrays
-  for (int k = 0; k < D; ++k) grad_out[k] = pair_grad_[k].data();
+  Real* const grad_out = pair_grad_.data.data();  // hoisted: stores cannot move the array
   // Below this the particle has (almost) no neighbours: no pressure can act on it.
   const double tiny = 1e-6 * this->lattice_gradient_sum();
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
@@ -116,7 +112,7 @@ void Dfsph<D>::compute_factors() {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
         f8 sq{}, cnt{}, rate{}, gf[D] = {}, gb[D] = {};
-        std::size_t slot = i * stride;
+        std::size_t slot = list.first_slot(i);
         for_each_listed_batch<D>(list, i, fx, xi, support2, [&](auto, const f8* d, f8 r2, i8 m) {
           const f8 G = simd::select(m, K.grad_factor(r2), f8{});
           sq += G * G * r2;
@@ -124,7 +120,7 @@ void Dfsph<D>::compute_factors() {
           for (int k = 0; k < D; ++k) {
             const f8 g = G * d[k];
             gf[k] += g;
-            simd::store(grad_out[k] + slot, g);
+            simd::store(grad_out + slot * decltype(pair_grad_)::kFields + k * simd::kWidth, g);
           }
           slot += simd::kWidth;
         });
@@ -186,7 +182,7 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
       f8 rf{};
       for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
         for (int k = 0; k < D; ++k)
-          rf += (vi[k] - simd::at(fv[k], j)) * simd::load(pair_grad_[k].data() + slot);
+          rf += (vi[k] - simd::at(fv[k], j)) * simd::load(pair_grad_.at(slot, k));
       });
       double wall = -double(wall_rate_[i]);
       for (int k = 0; k < D; ++k) wall += double(vi[k]) * wall_grad_[k][i];
@@ -221,7 +217,7 @@ void Dfsph<D>::apply_pressure(const Real* P, double dt) {
       f8 acc[D] = {};
       for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
         const f8 c = -mass * (Pi + simd::at(P, j));
-        for (int k = 0; k < D; ++k) acc[k] += c * simd::load(pair_grad_[k].data() + slot);
+        for (int k = 0; k < D; ++k) acc[k] += c * simd::load(pair_grad_.at(slot, k));
       });
       for (int k = 0; k < D; ++k) {
         const Real a = simd::hsum(acc[k]) - 2.0f * Pi * wall_grad_[k][i];

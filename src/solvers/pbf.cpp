@@ -150,16 +150,11 @@ double Pbf<D>::compute_lambda() {
   [[maybe_unused]] const Real* const psi = pa.psi;
   const uint32_t* const cells = pa.cells;
   const NeighbourList<D>& list = ctx_.fluid_list;  // current: update_neighbours() just ran
-  const std::size_t stride = list.stride();
-  for (int k = 0; k < D; ++k) {
-    pair_grad_[k].resize(n * stride);
-    wall_grad_[k].resize(n);
-  }
-  pair_scorr_.resize(n * stride);
-  // Raw pointers, hoisted: the loop's stores then cannot be taken to move the arrays.
-  Real* grad_out[D];
-  for (int k = 0; k < D; ++k) grad_out[k] = pair_grad_[k].data();
-  Real* const scorr_out = pair_scorr_.data();
+  pair_cache_.resize(list);
+  for (int k = 0; k < D; ++k) wall_grad_[k].resize(n);
+  // Hoisted: the loop's stores then cannot be taken to move the array.
+  Real* const cache_out = pair_cache_.data.data();
+  constexpr std::size_t F = decltype(pair_cache_)::kFields;
   const int n_corr = spec_.pbf_scorr_n;
   const double dq = spec_.pbf_scorr_dq * prm_.support;
   Real* rho = fluid_.rho.data();
@@ -173,7 +168,7 @@ double Pbf<D>::compute_lambda() {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
         f8 wf{}, wb{}, sq{}, gf[D] = {}, gb[D] = {};
-        std::size_t slot = i * stride;
+        std::size_t slot = list.first_slot(i);
         for_each_listed_batch<D>(list, i, fx, xi, support2, [&](auto, const f8* d, f8 r2, i8 m) {
           const f8 G = simd::select(m, K.grad_factor(r2), f8{});
           const f8 w = simd::select(m, K.value(r2), f8{});
@@ -182,7 +177,7 @@ double Pbf<D>::compute_lambda() {
           for (int k = 0; k < D; ++k) {
             const f8 g = G * d[k];
             gf[k] += g;
-            simd::store(grad_out[k] + slot, g);
+            simd::store(cache_out + slot * F + k * simd::kWidth, g);
           }
           // (W/W(Δq))ⁿ by squaring: the bits of n are loop-invariant branches.
           const f8 q = w * inv_w_dq, q2 = q * q, q4 = q2 * q2;
@@ -190,7 +185,7 @@ double Pbf<D>::compute_lambda() {
           if (n_corr & 2) qn *= q2;
           if (n_corr & 4) qn *= q4;
           if (n_corr & 8) qn *= q4 * q4;
-          simd::store(scorr_out + slot, qn);
+          simd::store(cache_out + slot * F + D * simd::kWidth, qn);
           slot += simd::kWidth;
         });
         for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
@@ -238,8 +233,8 @@ void Pbf<D>::apply_position_correction() {
       f8 acc[D] = {};
       // Masked lanes hold zero gradients, so they add nothing.
       for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
-        const f8 c = li + simd::at(lambda, j) - k_corr * simd::load(pair_scorr_.data() + slot);
-        for (int k = 0; k < D; ++k) acc[k] += c * simd::load(pair_grad_[k].data() + slot);
+        const f8 c = li + simd::at(lambda, j) - k_corr * simd::load(pair_cache_.at(slot, D));
+        for (int k = 0; k < D; ++k) acc[k] += c * simd::load(pair_cache_.at(slot, k));
       });
       for (int k = 0; k < D; ++k)
         delta_[k][i] = mass_over_rho0 * simd::hsum(acc[k]) + 2.0f * li * inv_rho0 * wall_grad_[k][i];

@@ -33,8 +33,8 @@ class Pbf final : public FluidWorld<D> {
   // What the λ pass leaves for the Δx pass of the same iteration (same positions): per listed
   // pair ∇ᵢWᵢⱼ and the s_corr weight (W/W(Δq))ⁿ, zero on masked lanes; per particle the wall
   // gradient Σ_b Ψ_b∇W_ib. The Δx pass then evaluates no kernel and walks no wall.
-  std::array<AlignedArray<Real>, D> pair_grad_, wall_grad_;
-  AlignedArray<Real> pair_scorr_;
+  PairCache<D + 1> pair_cache_;  // per listed pair: ∇Wᵢⱼ (fields 0..D-1), s_corr weight (D)
+  std::array<AlignedArray<Real>, D> wall_grad_;
   int iterations_ = 0;             // of the last substep
   double iteration_sum_ = 0;       // over the substeps this object solved (not a resumed run's)
   std::uint64_t solves_ = 0;

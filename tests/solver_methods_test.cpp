@@ -272,6 +272,36 @@ TEST(Dfsph, HoldsTheDefaultToleranceAtEveryStepIn3D) {
   EXPECT_GT(worst, 0.0);  // a real measurement
 }
 
+// The Chebyshev acceleration of the density solve (solver.dfsph.chebyshev) reaches the same
+// tolerance in fewer sweeps than plain Jacobi on a collapsing 2D column (measured 13.1 → 5.4
+// per step; plain Jacobi hits its cap of 100 on two steps as the column takes its load).
+TEST(Dfsph, ChebyshevAccelerationNeedsFewerSweeps) {
+  auto run = [](double rho, double* error, int* failed) {
+    SimSpec s = with_method(test::dam_break_2d(0.1, 0.005), "dfsph");
+    s.dfsph_chebyshev = rho;
+    auto sim = make_simulation(s, 2);
+    double worst = 0;
+    *failed = 0;
+    while (sim->time() < 0.25 * scale()) {
+      sim->step();
+      *failed += !sim->solver_failure().empty();
+      worst = std::max(worst, sim->stats().mean_density_error);
+    }
+    *error = worst;
+    return sim->stats().mean_pressure_iterations;
+  };
+  double e_plain, e_cheb;
+  int f_plain, f_cheb;
+  const double plain = run(0.0, &e_plain, &f_plain);
+  const double cheb = run(SimSpec{}.dfsph_chebyshev, &e_cheb, &f_cheb);
+  std::printf("DFSPH density sweeps per step: plain Jacobi %.2f (worst mean error %.4f%%, %d steps "
+              "at the iteration cap), Chebyshev %.2f (%.4f%%, %d)\n", plain, 100 * e_plain,
+              f_plain, cheb, 100 * e_cheb, f_cheb);
+  EXPECT_LT(cheb, 0.8 * plain);
+  EXPECT_EQ(f_cheb, 0);  // each of its solves reached the tolerance within the cap
+  EXPECT_LE(e_cheb, e_plain);
+}
+
 // PBF reports the density error its constraint solve leaves; with a fixed count, more Jacobi
 // iterations leave less of it (the solve converges). At default settings it iterates past
 // solver.pbf.iterations while the compression its last λ pass measured is above

@@ -268,6 +268,13 @@ const std::vector<ParamInfo>& parameter_table() {
                                              .help = "Iteration cap of each DFSPH solve; hitting "
                                                      "it stops the run (instability guard).",
                                              .live = true}),
+      field<&SimSpec::dfsph_chebyshev>({.key = "solver.dfsph.chebyshev", .min = 0, .max = 0.999,
+                                        .default_value = 0.95,
+                                        .help = "Chebyshev acceleration of the density solve's "
+                                                "Jacobi sweeps from the third sweep on (Wang "
+                                                "2015): the spectral radius ρ it assumes; 0 = "
+                                                "plain relaxed Jacobi.",
+                                        .live = true}),
       field<&SimSpec::gas_smoothing>({.key = "solver.gas.smoothing", .default_text = "adaptive",
                                       .choices = {"adaptive", "global"},
                                       .help = "Gas: adaptive hᵢ = η (mᵢ/ρᵢ)^(1/d) with the cubic "

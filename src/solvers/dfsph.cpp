@@ -19,6 +19,7 @@ Dfsph<D>::Dfsph(const SimSpec& spec, int threads) : W(spec, threads) {
   this->add_method_field({"neighbours", &neighbours_, false, true});
   // Scratch of one solve.
   this->add_method_field({"pressure", &pressure_, false, false});
+  this->add_method_field({"last_step", &last_step_, false, false});
   // Warm start: the pressure of the last step travels with its particle.
   this->add_method_field({"warm_density", &warm_density_, true, true});
   this->add_method_field({"warm_divergence", &warm_divergence_, true, true});

@@ -233,6 +233,7 @@ template <bool kDensity>
 int Dfsph<D>::solve(double dt, AlignedArray<Real>& total, double tolerance, const char* name) {
   ScopedTimer timer(kDensity ? times_.density_s : times_.forces_s);
   const std::size_t n = fluid_.size();
+  last_step_.resize(n);
   // Warm start: part of the last step's total pressure, stored independent of Δt (κ ∝ 1/Δt²,
   // 1/Δt).
   const double to_p = kDensity ? 1.0 / (dt * dt) : 1.0 / dt;
@@ -244,11 +245,34 @@ int Dfsph<D>::solve(double dt, AlignedArray<Real>& total, double tolerance, cons
   const int min_iterations = kDensity ? 2 : 1;  // a sweep past the tolerance (2017, Alg. 2-3)
   int it = 0;
   double err = residual(kDensity, dt, total);
+  const double rho = kDensity ? spec_.dfsph_chebyshev : 0.0;
+  const bool clamp = spec_.clamp_negative_pressure;
+  double omega = 1.0;
   while ((err > tolerance || it < min_iterations) && it < max_iterations) {
-    apply_pressure(pressure_.data(), dt);
+    // Chebyshev semi-iterative acceleration (Golub & Varga 1961; Wang 2015 for position-based
+    // solvers): P_{k+1} = ω_k (P_k + δ_k − P_{k−1}) + P_{k−1} with δ_k the Jacobi sweep's change,
+    // i.e. the applied change Δ_k = ω_k δ_k + (ω_k − 1) Δ_{k−1}, ω from the recurrence
+    // ω_2 = 2/(2 − ρ²), ω_{k+1} = 4/(4 − ρ²ω_k). It shrinks the slow, deep-column modes Jacobi
+    // leaves (DFSPH 3D dam break at 60k, 0.5 s: 8.92 → 4.18 sweeps per density solve). The first
+    // two sweeps stay plain: a short Chebyshev polynomial brings back modes one Jacobi sweep
+    // removes (at two sweeps by 1 − ω₂ = −0.82 at ρ = 0.95), and solves that stop after the
+    // minimum two (a fluid at rest, a periodic stream, Poiseuille flow) then gained noise that
+    // the warm start carried over from step to step (rest: |v| 0.018 m/s against < 1e-3).
+    // Divergence solves take about one sweep: left plain.
+    constexpr int kChebyshevFrom = 2;
+    if (rho > 0 && it >= kChebyshevFrom)
+      omega = it == kChebyshevFrom ? 2.0 / (2.0 - rho * rho) : 4.0 / (4.0 - rho * rho * omega);
+    const Real w = Real(omega), w1 = Real(omega - 1.0);
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) total[i] += pressure_[i];
+      for (std::size_t i = b; i < e; ++i) {
+        Real d = w * pressure_[i] + (it > 0 ? w1 * last_step_[i] : Real(0));
+        if (clamp && total[i] + d < 0) d = -total[i];
+        pressure_[i] = d;
+        last_step_[i] = d;
+        total[i] += d;
+      }
     });
+    apply_pressure(pressure_.data(), dt);
     err = residual(kDensity, dt, total);
     ++it;
   }

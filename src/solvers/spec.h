@@ -108,6 +108,7 @@ struct SimSpec {
   double dfsph_max_density_error = 1e-3;     // mean (ρ-ρ0)/ρ0 at which the density solve stops
   double dfsph_max_divergence_error = 1e-3;  // mean (Dρ/Dt)·dt/ρ0 at which the divergence solve stops
   int dfsph_max_iterations = 100;
+  double dfsph_chebyshev = 0.95;             // ρ of the Chebyshev acceleration (0 = plain Jacobi)
 
   // Gas, self-gravitating SPH with adaptive smoothing lengths (method "gas"; docs/self-gravity.md)
   GasSmoothing gas_smoothing = GasSmoothing::Adaptive;
@@ -164,6 +165,7 @@ inline void copy_live_parameters(const SimSpec& from, SimSpec& to) {
   to.dfsph_max_density_error = from.dfsph_max_density_error;
   to.dfsph_max_divergence_error = from.dfsph_max_divergence_error;
   to.dfsph_max_iterations = from.dfsph_max_iterations;
+  to.dfsph_chebyshev = from.dfsph_chebyshev;
   to.gas_damping = from.gas_damping;
   to.gas_spring = from.gas_spring;
   to.self_gravity = from.self_gravity;

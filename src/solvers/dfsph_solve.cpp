@@ -103,7 +103,8 @@ void Dfsph<D>::compute_factors() {
   pair_grad_.resize(list);
   for (int k = 0; k < D; ++k) wall_grad_[k].resize(n);
   wall_rate_.resize(n);
-  Real* const grad_out = pair_grad_.data.data();  // hoisted: stores cannot move the array
+  Real* grad_out[D];  // hoisted: the loop's stores then cannot be taken to move the arrays
+  for (int k = 0; k < D; ++k) grad_out[k] = pair_grad_.at(0, k);
   // Below this the particle has (almost) no neighbours: no pressure can act on it.
   const double tiny = 1e-6 * this->lattice_gradient_sum();
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
@@ -120,7 +121,7 @@ void Dfsph<D>::compute_factors() {
           for (int k = 0; k < D; ++k) {
             const f8 g = G * d[k];
             gf[k] += g;
-            simd::store(grad_out + slot * decltype(pair_grad_)::kFields + k * simd::kWidth, g);
+            simd::store(grad_out[k] + slot, g);
           }
           slot += simd::kWidth;
         });

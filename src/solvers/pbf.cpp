@@ -153,8 +153,8 @@ double Pbf<D>::compute_lambda() {
   pair_cache_.resize(list);
   for (int k = 0; k < D; ++k) wall_grad_[k].resize(n);
   // Hoisted: the loop's stores then cannot be taken to move the array.
-  Real* const cache_out = pair_cache_.data.data();
-  constexpr std::size_t F = decltype(pair_cache_)::kFields;
+  Real* cache_out[D + 1];
+  for (int k = 0; k <= D; ++k) cache_out[k] = pair_cache_.at(0, k);
   const int n_corr = spec_.pbf_scorr_n;
   const double dq = spec_.pbf_scorr_dq * prm_.support;
   Real* rho = fluid_.rho.data();
@@ -177,7 +177,7 @@ double Pbf<D>::compute_lambda() {
           for (int k = 0; k < D; ++k) {
             const f8 g = G * d[k];
             gf[k] += g;
-            simd::store(cache_out + slot * F + k * simd::kWidth, g);
+            simd::store(cache_out[k] + slot, g);
           }
           // (W/W(Δq))ⁿ by squaring: the bits of n are loop-invariant branches.
           const f8 q = w * inv_w_dq, q2 = q * q, q4 = q2 * q2;
@@ -185,7 +185,7 @@ double Pbf<D>::compute_lambda() {
           if (n_corr & 2) qn *= q2;
           if (n_corr & 4) qn *= q4;
           if (n_corr & 8) qn *= q4 * q4;
-          simd::store(cache_out + slot * F + D * simd::kWidth, qn);
+          simd::store(cache_out[D] + slot, qn);
           slot += simd::kWidth;
         });
         for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,

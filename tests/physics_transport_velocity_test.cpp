@@ -116,6 +116,34 @@ TEST(TransportVelocity, BitwiseIdenticalFor1And2ThreadsAndActs) {
   EXPECT_FALSE(positions(*one) == positions(*ref));
 }
 
+// DFSPH steps with the flow (Δt = 0.005 s here, c0Δt = 2h), so the transport velocity's
+// background pressure ρ0c0², an explicit pressure, would cross two smoothing lengths per step:
+// the vortex blew up at step 5 (density error 54%). It is capped at ρ0(cfl·h/Δt)²; the run now
+// keeps its density and its amplitude decays. What is not right yet (docs/validation.md): the
+// decay itself, far too fast here at 40² (amplitude 0.27 at t = 0.3 s against the exact 0.79;
+// at the validation's 80², 35% fast), and a fifth of the density solves stop at their cap just
+// above the tolerance.
+TEST(TransportVelocity, DfsphStaysStableAtTheFullBackgroundPressure) {
+  SimSpec s = taylor_green(40, 1.0);
+  s.method = "dfsph";
+  auto sim = make_simulation(s, 2);
+  set_vortex(*sim);
+  const double a0 = amplitude(*sim);
+  double worst = 0;
+  int capped = 0;  // steps whose density solve stopped at its iteration cap (printed)
+  while (sim->time() < 0.3) {
+    sim->step();
+    capped += !sim->solver_failure().empty();
+    worst = std::max(worst, sim->stats().max_density_error);
+  }
+  const double a = amplitude(*sim);
+  std::printf("DFSPH Taylor-Green with p_b = rho0 c0^2: %llu steps (%d at the iteration cap), "
+              "amplitude %.4f -> %.4f, worst density error %.3f%%\n",
+              (unsigned long long)sim->step_count(), capped, a0, a, 100 * worst);
+  EXPECT_LT(worst, 0.05);
+  EXPECT_LT(a, a0);
+}
+
 // ṽ − v (the transport_dv.* method fields) travels in checkpoints: a resumed run continues bitwise
 // as the straight one. DFSPH at a small p_b (at ρ0c0² its CFL step overshoots, docs/validation.md).
 TEST(TransportVelocity, CheckpointResumesBitwise) {

@@ -46,7 +46,10 @@ void Dfsph<D>::step() {
   correct_density_error(dt);                                      // Algorithm 3      (line 7)
   {
     ScopedTimer timer(times_.integrate_s);
-    this->transport_velocity_shift(dt, dt);                       // optional: Adami 2013
+    // optional: Adami 2013. p_b acts as an explicit pressure, stable only while its signal
+    // crosses less than cfl·h per step; DFSPH's step follows the flow, not c0 (Taylor–Green at
+    // c0 = 10 U: c0Δt = 2h, the run blew up at step 5), so p_b is capped at ρ0 (cfl·h/Δt)².
+    this->transport_velocity_shift(dt, dt, spec_.cfl * prm_.h / dt);
     this->drift(dt);                                              // x += Δt v*       (line 8)
     this->advance_scene(this->time_ + dt, dt);                    // obstacles, emitters
   }

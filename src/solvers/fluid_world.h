@@ -238,8 +238,10 @@ class FluidWorld : public Simulation {
   /// Δt_drift·Δt_kick·a_b, the acceleration of a uniform background pressure p_b =
   /// solver.transport_velocity·ρ0c0², which keeps the arrangement uniform. Call just before
   /// drift, with the positions and densities the step's forces came from. Nothing when the
-  /// parameter is 0 (transport_velocity.cpp).
-  void transport_velocity_shift(double dt_kick, double dt_drift);
+  /// parameter is 0 (transport_velocity.cpp). Methods whose step is not bounded by c0 pass
+  /// max_signal_speed: p_b is then capped at ρ0·max_signal_speed².
+  void transport_velocity_shift(double dt_kick, double dt_drift,
+                                double max_signal_speed = std::numeric_limits<double>::infinity());
   /// The momentum correction of the same formulation (Adami et al. 2013, eq. 8's second term):
   /// aᵢ += Σⱼ m (1/ρᵢ² + 1/ρⱼ²) ½(Aᵢ + Aⱼ)·∇Wᵢⱼ with A = ρ v ⊗ (ṽ − v), which transports the
   /// momentum with the particles' transport velocity. Call after accelerations(). Nothing when

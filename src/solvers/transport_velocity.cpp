@@ -22,6 +22,7 @@
 // sum points outwards and the stage would push the surface off, so it is for confined or
 // periodic flows, off by default. Gathered per particle in the fixed order of the other sums
 // (bitwise identical for any thread count), then applied in a second pass.
+#include <algorithm>
 #include <cmath>
 
 #include "core/pair_loop.h"
@@ -33,11 +34,12 @@ using simd::f8;
 using simd::i8;
 
 template <int D>
-void FluidWorld<D>::transport_velocity_shift(double dt_kick, double dt_drift) {
+void FluidWorld<D>::transport_velocity_shift(double dt_kick, double dt_drift, double max_signal_speed) {
   const std::size_t n = fluid_.size();
   if (n == 0 || spec_.transport_velocity <= 0 || dt_kick <= 0 || dt_drift <= 0) return;
   const Real support2 = Real(prm_.support * prm_.support), mass = Real(prm_.mass);
-  const double pb = spec_.transport_velocity * prm_.rho0 * prm_.c0 * prm_.c0;
+  const double c = std::min(prm_.c0, max_signal_speed);
+  const double pb = spec_.transport_velocity * prm_.rho0 * c * c;
   const Real coeff_v = Real(pb * dt_kick);
   const Real inv_rho02 = Real(1.0 / (prm_.rho0 * prm_.rho0));
   const PairArrays<D> pa = pair_arrays();
@@ -117,8 +119,8 @@ void FluidWorld<D>::add_transport_velocity_stress() {
   });
 }
 
-template void FluidWorld<2>::transport_velocity_shift(double, double);
-template void FluidWorld<3>::transport_velocity_shift(double, double);
+template void FluidWorld<2>::transport_velocity_shift(double, double, double);
+template void FluidWorld<3>::transport_velocity_shift(double, double, double);
 template void FluidWorld<2>::add_transport_velocity_stress();
 template void FluidWorld<3>::add_transport_velocity_stress();
 

@@ -272,8 +272,8 @@ const std::vector<ParamInfo>& parameter_table() {
                                         .default_value = 0.95,
                                         .help = "Chebyshev acceleration of the density solve's "
                                                 "Jacobi sweeps from the third sweep on (Wang "
-                                                "2015): the spectral radius ρ it assumes; 0 = "
-                                                "plain relaxed Jacobi.",
+                                                "2015), with clamped pressure only: the spectral "
+                                                "radius ρ it assumes; 0 = plain relaxed Jacobi.",
                                         .live = true}),
       field<&SimSpec::gas_smoothing>({.key = "solver.gas.smoothing", .default_text = "adaptive",
                                       .choices = {"adaptive", "global"},

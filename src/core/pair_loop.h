@@ -33,8 +33,9 @@ decltype(auto) with_kernel(KernelType type, double h, bool periodic, Fn&& fn) {
   });
 }
 
-// Forced inlining keeps the caller's accumulators in registers across batches.
-template <int D, bool kPeriodic, class Fn>
+// Forced inlining keeps the caller's accumulators in registers across batches. kSkipEmpty
+// skips batches with no lane in range (worth its mispredicted branch when fn is heavy).
+template <int D, bool kPeriodic, bool kSkipEmpty = true, class Fn>
 [[gnu::always_inline]] inline void for_each_candidate_batch(const UniformGrid<D>& grid, uint32_t cell,
                                      const Real* const xs[D], const Real xi[D], Real support2,
                                      Fn&& fn) {
@@ -49,7 +50,7 @@ template <int D, bool kPeriodic, class Fn>
       for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
       const i8 in_range = simd::lane_index() < int(end - j);
       const i8 mask = in_range & (r2 < support2);
-      if (simd::any(mask)) fn(j, d, r2, mask);
+      if (!kSkipEmpty || simd::any(mask)) fn(j, d, r2, mask);
     }
   };
   if constexpr (kPeriodic)

@@ -172,6 +172,7 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
   const double rho0 = prm_.rho0, inv_rho0 = 1.0 / rho0;
   const bool clamp = spec_.clamp_negative_pressure;
   const double to_p = density ? 1.0 / (dt * dt) : 1.0 / dt;
+  const Real* const packed_v = packed_v_.data();  // written by the apply_pressure before
   // Particles with a thin neighbourhood (free surface, spray) get no divergence correction:
   // their missing neighbours read as expansion or compression that is not there (2017, §4.2).
   const Real min_neighbours = D == 3 ? 20.0f : 7.0f;
@@ -181,10 +182,18 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
       Real vi[D];
       for (int k = 0; k < D; ++k) vi[k] = fv[k][i];
       f8 rf{};
-      for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
-        for (int k = 0; k < D; ++k)
-          rf += (vi[k] - simd::at(fv[k], j)) * simd::load(pair_grad_.at(slot, k));
-      });
+      if constexpr (D == 3) {
+        for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
+          f8 vj[3];
+          simd::at_packed3(packed_v, j, vj[0], vj[1], vj[2]);
+          for (int k = 0; k < D; ++k) rf += (vi[k] - vj[k]) * simd::load(pair_grad_.at(slot, k));
+        });
+      } else {
+        for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
+          for (int k = 0; k < D; ++k)
+            rf += (vi[k] - simd::at(fv[k], j)) * simd::load(pair_grad_.at(slot, k));
+        });
+      }
       double wall = -double(wall_rate_[i]);
       for (int k = 0; k < D; ++k) wall += double(vi[k]) * wall_grad_[k][i];
       const double rate = double(mass) * simd::hsum(rf) + wall;  // Dρᵢ/Dt
@@ -212,6 +221,8 @@ void Dfsph<D>::apply_pressure(const Real* P, double dt) {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), fdt = Real(dt);
   const NeighbourList<D>& list = ctx_.fluid_list;
+  if constexpr (D == 3) packed_v_.resize(4 * n);
+  Real* const packed_v = packed_v_.data();
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Real Pi = P[i];
@@ -224,6 +235,7 @@ void Dfsph<D>::apply_pressure(const Real* P, double dt) {
         const Real a = simd::hsum(acc[k]) - 2.0f * Pi * wall_grad_[k][i];
         fluid_.a[k][i] = a;
         fluid_.v[k][i] += a * fdt;
+        if constexpr (D == 3) packed_v[4 * i + k] = fluid_.v[k][i];
       }
     }
   }, ThreadPool::kPairs);

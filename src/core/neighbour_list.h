@@ -79,6 +79,32 @@ template <int D, class Fn>
   }
 }
 
+/// for_each_listed_batch in 3D with the positions read from 16-byte (x, y, z, ·) records
+/// (simd::at_packed3) instead of three gathers.
+template <class Fn>
+[[gnu::always_inline]] inline void for_each_listed_batch_packed(const NeighbourList<3>& list,
+                                                                std::size_t i, const Real* rec,
+                                                                const Real xi[3], Real support2,
+                                                                Fn&& fn) {
+  using simd::f8;
+  using simd::i8;
+  const uint32_t* idx = list.begin(i);
+  const int count = int(list.count(i));
+  const bool periodic = list.grid()->any_periodic();
+  for (int s = 0; s < count; s += simd::kWidth) {
+    i8 j;
+    std::memcpy(&j, idx + s, sizeof j);
+    f8 d[3];
+    simd::at_packed3(rec, j, d[0], d[1], d[2]);
+    for (int k = 0; k < 3; ++k) d[k] = xi[k] - d[k];
+    if (periodic) list.grid()->wrap_offsets(d);
+    f8 r2 = f8{};
+    for (int k = 0; k < 3; ++k) r2 += d[k] * d[k];
+    const i8 mask = (simd::lane_index() < count - s) & (r2 < support2);
+    fn(j, d, r2, mask);
+  }
+}
+
 /// Walks particle i's list eight at a time for per-pair caches written by an earlier walk at
 /// the same positions: fn(j, slot) with j the lanes' particle indices and slot the first lane's
 /// slot (first_slot(i) + s). Positions are not read; masked lanes hold whatever the writer

@@ -157,6 +157,17 @@ double Pbf<D>::compute_lambda() {
   for (int k = 0; k <= D; ++k) cache_out[k] = pair_cache_.at(0, k);
   const int n_corr = spec_.pbf_scorr_n;
   const double dq = spec_.pbf_scorr_dq * prm_.support;
+  // 3D: the positions as 16-byte records, read by eight loads per batch instead of three
+  // gathers (the positions move every iteration, so the copy is made here).
+  if constexpr (D == 3) {
+    packed_x_.resize(4 * n);
+    Real* out = packed_x_.data();
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i)
+        for (int k = 0; k < D; ++k) out[4 * i + k] = fx[k][i];
+    });
+  }
+  const Real* const packed_x = packed_x_.data();
   Real* rho = fluid_.rho.data();
   Real* lambda = lambda_.data();
   Real* lambda_sum = lambda_sum_.data();
@@ -169,7 +180,7 @@ double Pbf<D>::compute_lambda() {
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
         f8 wf{}, wb{}, sq{}, gf[D] = {}, gb[D] = {};
         std::size_t slot = list.first_slot(i);
-        for_each_listed_batch<D>(list, i, fx, xi, support2, [&](auto, const f8* d, f8 r2, i8 m) {
+        auto pair = [&](auto, const f8* d, f8 r2, i8 m) {
           const f8 G = simd::select(m, K.grad_factor(r2), f8{});
           const f8 w = simd::select(m, K.value(r2), f8{});
           wf += w;
@@ -187,7 +198,11 @@ double Pbf<D>::compute_lambda() {
           if (n_corr & 8) qn *= q4 * q4;
           simd::store(cache_out[D] + slot, qn);
           slot += simd::kWidth;
-        });
+        };
+        if constexpr (D == 3)
+          for_each_listed_batch_packed(list, i, packed_x, xi, support2, pair);
+        else
+          for_each_listed_batch<D>(list, i, fx, xi, support2, pair);
         for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                     [&](auto j, const f8* d, f8 r2, i8 m) {
                                       const f8 w = simd::select(m, simd::at(psi, j), f8{});

@@ -58,6 +58,30 @@ inline void at_packed3(const float* rec, i8 j, f8& a, f8& b, f8& c) {
   }
 #endif
 }
+/// As at_packed3, all four fields.
+inline void at_packed4(const float* rec, i8 j, f8& a, f8& b, f8& c, f8& w) {
+#if defined(__AVX__)
+  const __m128 r0 = _mm_load_ps(rec + 4 * j[0]), r1 = _mm_load_ps(rec + 4 * j[1]);
+  const __m128 r2 = _mm_load_ps(rec + 4 * j[2]), r3 = _mm_load_ps(rec + 4 * j[3]);
+  const __m256 q0 = _mm256_insertf128_ps(_mm256_castps128_ps256(r0), _mm_load_ps(rec + 4 * j[4]), 1);
+  const __m256 q1 = _mm256_insertf128_ps(_mm256_castps128_ps256(r1), _mm_load_ps(rec + 4 * j[5]), 1);
+  const __m256 q2 = _mm256_insertf128_ps(_mm256_castps128_ps256(r2), _mm_load_ps(rec + 4 * j[6]), 1);
+  const __m256 q3 = _mm256_insertf128_ps(_mm256_castps128_ps256(r3), _mm_load_ps(rec + 4 * j[7]), 1);
+  const __m256 t0 = _mm256_unpacklo_ps(q0, q1), t1 = _mm256_unpackhi_ps(q0, q1);
+  const __m256 t2 = _mm256_unpacklo_ps(q2, q3), t3 = _mm256_unpackhi_ps(q2, q3);
+  a = _mm256_shuffle_ps(t0, t2, 0x44);
+  b = _mm256_shuffle_ps(t0, t2, 0xEE);
+  c = _mm256_shuffle_ps(t1, t3, 0x44);
+  w = _mm256_shuffle_ps(t1, t3, 0xEE);
+#else
+  for (int i = 0; i < kWidth; ++i) {
+    a[i] = rec[4 * j[i]];
+    b[i] = rec[4 * j[i] + 1];
+    c[i] = rec[4 * j[i] + 2];
+    w[i] = rec[4 * j[i] + 3];
+  }
+#endif
+}
 
 inline f8 sqrt(f8 x) {
 #if defined(__AVX__)

@@ -42,16 +42,37 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
   [[maybe_unused]] const Real* const psi = pa.psi;
   const uint32_t* const cells = pa.cells;
   const Real* rho = fluid_.rho.data();
+  // 3D with current lists: the neighbours' positions and (v, ρ) as 16-byte records, read by
+  // eight loads per batch instead of seven gathers (as the λ pass).
+  const bool packed = D == 3 && ctx_.fluid_list.valid() && ctx_.fluid_list.size() == n;
+  if (packed) {
+    packed_x_.resize(4 * n);
+    packed_v_.resize(4 * n);
+    Real* px = packed_x_.data();
+    Real* pv = packed_v_.data();
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        for (int k = 0; k < D; ++k) {
+          px[4 * i + k] = fx[k][i];
+          pv[4 * i + k] = fv[k][i];
+        }
+        pv[4 * i + 3] = rho[i];
+      }
+    });
+  }
+  const Real* const px = packed_x_.data();
+  const Real* const pv = packed_v_.data();
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D], vi[D];
         for (int k = 0; k < D; ++k) { xi[k] = fx[k][i]; vi[k] = fv[k][i]; }
         f8 dv[D] = {}, dvb[D] = {}, om[kOmega] = {}, wf{}, wb{};
-        this->template for_each_fluid_batch<periodic_v<decltype(K)>>(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
-              const f8 vol = simd::select(m, mass * simd::rcp(simd::at(rho, j)), f8{});
+        // The pair terms, given the neighbours' ρⱼ and vⱼ.
+        auto pair = [&](const f8* d, f8 r2, i8 m, f8 rhoj, const f8* vj) {
+              const f8 vol = simd::select(m, mass * simd::rcp(rhoj), f8{});
               f8 vji[D];
-              for (int k = 0; k < D; ++k) vji[k] = simd::at(fv[k], j) - vi[k];
+              for (int k = 0; k < D; ++k) vji[k] = vj[k] - vi[k];
               const f8 W = simd::select(m, K.value(r2), f8{});
               wf += W;
               const f8 w = vol * W;
@@ -66,7 +87,24 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
                   om[2] += G * (d[0] * vji[1] - d[1] * vji[0]);
                 }
               }
-            });
+            };
+        if constexpr (D == 3) {
+          if (packed) {
+            for_each_listed_batch_packed(ctx_.fluid_list, i, px, xi, support2,
+                                         [&](i8 j, const f8* d, f8 r2, i8 m) {
+                                           f8 vj[3], rhoj;
+                                           simd::at_packed4(pv, j, vj[0], vj[1], vj[2], rhoj);
+                                           pair(d, r2, m, rhoj, vj);
+                                         });
+          }
+        }
+        if (!packed)
+          this->template for_each_fluid_batch<periodic_v<decltype(K)>>(
+              i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
+                f8 vj[D];
+                for (int k = 0; k < D; ++k) vj[k] = simd::at(fv[k], j);
+                pair(d, r2, m, simd::at(rho, j), vj);
+              });
         for_each_candidate_batch<D, periodic_v<decltype(K)>>(
             ctx_.boundary_grid, cells[i], bx, xi, support2, [&](auto j, const f8*, f8 r2, i8 m) {
               const f8 w = simd::select(m, simd::at(psi, j) * K.value(r2), f8{});

@@ -24,6 +24,23 @@ constexpr float kMinWallDistance = 0.25f;  // spacings
 }  // namespace
 
 template <int D>
+const Real* FluidWorld<D>::pack_positions() {
+  if constexpr (D != 3) {
+    return nullptr;
+  } else {
+    const std::size_t n = fluid_.size();
+    if (!lists_current() || n == 0) return nullptr;
+    ctx_.packed_x.resize(4 * n);
+    Real* out = ctx_.packed_x.data();
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i)
+        for (int k = 0; k < D; ++k) out[4 * i + k] = fluid_.x[k][i];
+    });
+    return out;
+  }
+}
+
+template <int D>
 void FluidWorld<D>::compute_density() {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
@@ -32,6 +49,7 @@ void FluidWorld<D>::compute_density() {
   [[maybe_unused]] const Real* const psi = pa.psi;
   const uint32_t* const cells = pa.cells;
   Real* rho = fluid_.rho.data();
+  const Real* const packed = pack_positions();
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
@@ -41,7 +59,7 @@ void FluidWorld<D>::compute_density() {
         this->template for_each_fluid_batch<periodic_v<decltype(K)>>(i, fx, xi, support2,
                                     [&](auto, const f8*, f8 r2, i8 m) {
                                       wf += simd::select(m, K.value(r2), f8{});
-                                    });
+                                    }, packed);
         for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                     [&](auto j, const f8*, f8 r2, i8 m) {
                                       wb += simd::select(m, simd::at(psi, j) * K.value(r2), f8{});
@@ -100,6 +118,7 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
   const Real inv_rho0 = Real(1.0 / prm_.rho0);
   const Brush brush = brush_;
   const Vec<D> brush_c = truncate<D>(brush.center);
+  const Real* const packed = (kPressure || kViscosity) ? pack_positions() : nullptr;
 
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
@@ -127,7 +146,7 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
               }
               const f8 s = simd::select(m, -mass * pij * G, f8{});
               for (int k = 0; k < D; ++k) acc[k] += kViscosity ? s * d[k] + lam * vij[k] : s * d[k];
-            });
+            }, packed);
         }
         // Boundary neighbours mirror the fluid particle's pressure and density (ρ_b = ρᵢ). The
         // cell comes from the position, not from the last sort: PBF calls this before it sorts,
@@ -310,6 +329,7 @@ void FluidWorld<D>::compute_boundary_psi() {
 
 #define RTSPH_INSTANTIATE(D)                          \
   template void FluidWorld<D>::compute_density();          \
+  template const Real* FluidWorld<D>::pack_positions();     \
   template void FluidWorld<D>::accelerations(const ForceTerms&); \
   template void FluidWorld<D>::extrapolate_boundary_pressure(); \
   template void FluidWorld<D>::compute_boundary_psi();

@@ -53,14 +53,12 @@ class NeighbourList {
   bool valid_ = false;
 };
 
-/// Walks particle i's list eight at a time: fn(j, d, r2, mask) as for_each_candidate_batch,
-/// with j the lanes' particle indices (an i8: read fields with simd::at(array, j)). Positions
-/// are re-read, so the sums see particles that moved since the list was built.
-template <int D, class Fn>
-[[gnu::always_inline]] inline void for_each_listed_batch(const NeighbourList<D>& list,
-                                                         std::size_t i, const Real* const xs[D],
-                                                         const Real xi[D], Real support2,
-                                                         Fn&& fn) {
+namespace detail {
+/// The list walk, with load(j, x) filling x[D] with the lanes' positions.
+template <int D, class Load, class Fn>
+[[gnu::always_inline]] inline void walk_listed(const NeighbourList<D>& list, std::size_t i,
+                                               const Real xi[D], Real support2, Load&& load,
+                                               Fn&& fn) {
   using simd::f8;
   using simd::i8;
   const uint32_t* idx = list.begin(i);
@@ -70,13 +68,28 @@ template <int D, class Fn>
     i8 j;
     std::memcpy(&j, idx + s, sizeof j);
     f8 d[D];
-    for (int k = 0; k < D; ++k) d[k] = xi[k] - simd::at(xs[k], j);
+    load(j, d);
+    for (int k = 0; k < D; ++k) d[k] = xi[k] - d[k];
     if (periodic) list.grid()->wrap_offsets(d);  // minimum image across a seam
     f8 r2 = f8{};
     for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
     const i8 mask = (simd::lane_index() < count - s) & (r2 < support2);
     fn(j, d, r2, mask);
   }
+}
+}  // namespace detail
+
+/// Walks particle i's list eight at a time: fn(j, d, r2, mask) as for_each_candidate_batch,
+/// with j the lanes' particle indices (an i8: read fields with simd::at(array, j)). Positions
+/// are re-read, so the sums see particles that moved since the list was built.
+template <int D, class Fn>
+[[gnu::always_inline]] inline void for_each_listed_batch(const NeighbourList<D>& list,
+                                                         std::size_t i, const Real* const xs[D],
+                                                         const Real xi[D], Real support2,
+                                                         Fn&& fn) {
+  detail::walk_listed<D>(list, i, xi, support2, [&](simd::i8 j, simd::f8* x) {
+    for (int k = 0; k < D; ++k) x[k] = simd::at(xs[k], j);
+  }, fn);
 }
 
 /// for_each_listed_batch in 3D with the positions read from 16-byte (x, y, z, ·) records
@@ -86,23 +99,9 @@ template <class Fn>
                                                                 std::size_t i, const Real* rec,
                                                                 const Real xi[3], Real support2,
                                                                 Fn&& fn) {
-  using simd::f8;
-  using simd::i8;
-  const uint32_t* idx = list.begin(i);
-  const int count = int(list.count(i));
-  const bool periodic = list.grid()->any_periodic();
-  for (int s = 0; s < count; s += simd::kWidth) {
-    i8 j;
-    std::memcpy(&j, idx + s, sizeof j);
-    f8 d[3];
-    simd::at_packed3(rec, j, d[0], d[1], d[2]);
-    for (int k = 0; k < 3; ++k) d[k] = xi[k] - d[k];
-    if (periodic) list.grid()->wrap_offsets(d);
-    f8 r2 = f8{};
-    for (int k = 0; k < 3; ++k) r2 += d[k] * d[k];
-    const i8 mask = (simd::lane_index() < count - s) & (r2 < support2);
-    fn(j, d, r2, mask);
-  }
+  detail::walk_listed<3>(list, i, xi, support2, [&](simd::i8 j, simd::f8* x) {
+    simd::at_packed3(rec, j, x[0], x[1], x[2]);
+  }, fn);
 }
 
 /// Walks particle i's list eight at a time for per-pair caches written by an earlier walk at

@@ -33,32 +33,9 @@ inline f8 at(const float* p, i8 j) {
 #endif
 }
 inline i8 lane_index() { return i8{0, 1, 2, 3, 4, 5, 6, 7}; }
-/// The first three fields of eight 16-byte records (x, y, z, unused) at the indices j, as three
-/// batches: eight 16-byte loads and a transpose instead of three gathers (a gather costs about
-/// as much as its eight loads; DFSPH's residual sweep at 60k: three gathers were half its time).
-inline void at_packed3(const float* rec, i8 j, f8& a, f8& b, f8& c) {
-#if defined(__AVX__)
-  const __m128 r0 = _mm_load_ps(rec + 4 * j[0]), r1 = _mm_load_ps(rec + 4 * j[1]);
-  const __m128 r2 = _mm_load_ps(rec + 4 * j[2]), r3 = _mm_load_ps(rec + 4 * j[3]);
-  const __m256 q0 = _mm256_insertf128_ps(_mm256_castps128_ps256(r0), _mm_load_ps(rec + 4 * j[4]), 1);
-  const __m256 q1 = _mm256_insertf128_ps(_mm256_castps128_ps256(r1), _mm_load_ps(rec + 4 * j[5]), 1);
-  const __m256 q2 = _mm256_insertf128_ps(_mm256_castps128_ps256(r2), _mm_load_ps(rec + 4 * j[6]), 1);
-  const __m256 q3 = _mm256_insertf128_ps(_mm256_castps128_ps256(r3), _mm_load_ps(rec + 4 * j[7]), 1);
-  // Lanes (0,4) (1,5) (2,6) (3,7) pairwise: unpack, then pick x, y, z.
-  const __m256 t0 = _mm256_unpacklo_ps(q0, q1), t1 = _mm256_unpackhi_ps(q0, q1);
-  const __m256 t2 = _mm256_unpacklo_ps(q2, q3), t3 = _mm256_unpackhi_ps(q2, q3);
-  a = _mm256_shuffle_ps(t0, t2, 0x44);
-  b = _mm256_shuffle_ps(t0, t2, 0xEE);
-  c = _mm256_shuffle_ps(t1, t3, 0x44);
-#else
-  for (int i = 0; i < kWidth; ++i) {
-    a[i] = rec[4 * j[i]];
-    b[i] = rec[4 * j[i] + 1];
-    c[i] = rec[4 * j[i] + 2];
-  }
-#endif
-}
-/// As at_packed3, all four fields.
+/// The four fields of eight 16-byte records (e.g. x, y, z, w) at the indices j, as four
+/// batches: eight 16-byte loads and a transpose instead of four gathers (a gather costs about as
+/// much as its eight loads; DFSPH's residual sweep at 60k: three gathers were half its time).
 inline void at_packed4(const float* rec, i8 j, f8& a, f8& b, f8& c, f8& w) {
 #if defined(__AVX__)
   const __m128 r0 = _mm_load_ps(rec + 4 * j[0]), r1 = _mm_load_ps(rec + 4 * j[1]);
@@ -67,6 +44,7 @@ inline void at_packed4(const float* rec, i8 j, f8& a, f8& b, f8& c, f8& w) {
   const __m256 q1 = _mm256_insertf128_ps(_mm256_castps128_ps256(r1), _mm_load_ps(rec + 4 * j[5]), 1);
   const __m256 q2 = _mm256_insertf128_ps(_mm256_castps128_ps256(r2), _mm_load_ps(rec + 4 * j[6]), 1);
   const __m256 q3 = _mm256_insertf128_ps(_mm256_castps128_ps256(r3), _mm_load_ps(rec + 4 * j[7]), 1);
+  // Lanes (0,4) (1,5) (2,6) (3,7) pairwise: unpack, then pick each field.
   const __m256 t0 = _mm256_unpacklo_ps(q0, q1), t1 = _mm256_unpackhi_ps(q0, q1);
   const __m256 t2 = _mm256_unpacklo_ps(q2, q3), t3 = _mm256_unpackhi_ps(q2, q3);
   a = _mm256_shuffle_ps(t0, t2, 0x44);
@@ -81,6 +59,11 @@ inline void at_packed4(const float* rec, i8 j, f8& a, f8& b, f8& c, f8& w) {
     w[i] = rec[4 * j[i] + 3];
   }
 #endif
+}
+/// The first three fields (the fourth is left unread by the optimiser).
+inline void at_packed3(const float* rec, i8 j, f8& a, f8& b, f8& c) {
+  f8 w;
+  at_packed4(rec, j, a, b, c, w);
 }
 
 inline f8 sqrt(f8 x) {

@@ -105,17 +105,7 @@ void Dfsph<D>::compute_factors() {
   wall_rate_.resize(n);
   Real* grad_out[D];  // hoisted: the loop's stores then cannot be taken to move the arrays
   for (int k = 0; k < D; ++k) grad_out[k] = pair_grad_.at(0, k);
-  // 3D: the positions as 16-byte records, read by eight loads per batch instead of three
-  // gathers (packed_v_ is free until the next sweep writes it).
-  if constexpr (D == 3) {
-    packed_v_.resize(4 * n);
-    Real* out = packed_v_.data();
-    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i)
-        for (int k = 0; k < D; ++k) out[4 * i + k] = fx[k][i];
-    });
-  }
-  const Real* const packed_x = packed_v_.data();
+  const Real* const packed_x = this->pack_positions();  // 3D: records instead of gathers
   // Below this the particle has (almost) no neighbours: no pressure can act on it.
   const double tiny = 1e-6 * this->lattice_gradient_sum();
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
@@ -136,10 +126,11 @@ void Dfsph<D>::compute_factors() {
           }
           slot += simd::kWidth;
         };
-        if constexpr (D == 3)
-          for_each_listed_batch_packed(list, i, packed_x, xi, support2, pair);
-        else
+        if (D == 3 && packed_x) {
+          if constexpr (D == 3) for_each_listed_batch_packed(list, i, packed_x, xi, support2, pair);
+        } else {
           for_each_listed_batch<D>(list, i, fx, xi, support2, pair);
+        }
         for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                     [&](auto j, const f8* d, f8 r2, i8 m) {
                                       const f8 G = simd::select(m, simd::at(psi, j) * K.grad_factor(r2), f8{});

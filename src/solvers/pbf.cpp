@@ -157,17 +157,8 @@ double Pbf<D>::compute_lambda() {
   for (int k = 0; k <= D; ++k) cache_out[k] = pair_cache_.at(0, k);
   const int n_corr = spec_.pbf_scorr_n;
   const double dq = spec_.pbf_scorr_dq * prm_.support;
-  // 3D: the positions as 16-byte records, read by eight loads per batch instead of three
-  // gathers (the positions move every iteration, so the copy is made here).
-  if constexpr (D == 3) {
-    packed_x_.resize(4 * n);
-    Real* out = packed_x_.data();
-    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i)
-        for (int k = 0; k < D; ++k) out[4 * i + k] = fx[k][i];
-    });
-  }
-  const Real* const packed_x = packed_x_.data();
+  // 3D: records instead of gathers; the positions move every iteration, so copied here.
+  const Real* const packed_x = this->pack_positions();
   Real* rho = fluid_.rho.data();
   Real* lambda = lambda_.data();
   Real* lambda_sum = lambda_sum_.data();
@@ -199,10 +190,11 @@ double Pbf<D>::compute_lambda() {
           simd::store(cache_out[D] + slot, qn);
           slot += simd::kWidth;
         };
-        if constexpr (D == 3)
-          for_each_listed_batch_packed(list, i, packed_x, xi, support2, pair);
-        else
+        if (D == 3 && packed_x) {
+          if constexpr (D == 3) for_each_listed_batch_packed(list, i, packed_x, xi, support2, pair);
+        } else {
           for_each_listed_batch<D>(list, i, fx, xi, support2, pair);
+        }
         for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                     [&](auto j, const f8* d, f8 r2, i8 m) {
                                       const f8 w = simd::select(m, simd::at(psi, j), f8{});

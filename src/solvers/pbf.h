@@ -29,7 +29,6 @@ class Pbf final : public FluidWorld<D> {
   double lattice_gradient_norm_ = 0;  // Σⱼ|∇ⱼCᵢ|² of a particle inside the rest lattice (1/m²)
   AlignedArray<Real> lambda_, lambda_sum_, rho_next_;
   std::array<AlignedArray<Real>, D> predicted_, delta_;
-  AlignedArray<Real> packed_x_;  // 3D: positions as (x, y, z, ·) records for the λ and XSPH passes
   AlignedArray<Real> packed_v_;  // 3D: (vx, vy, vz, ρ) records for the XSPH pass
   AlignedArray<Real> omega_[D == 2 ? 1 : 3];
   // What the λ pass leaves for the Δx pass of the same iteration (same positions): per listed

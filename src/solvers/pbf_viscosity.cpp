@@ -44,23 +44,18 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
   const Real* rho = fluid_.rho.data();
   // 3D with current lists: the neighbours' positions and (v, ρ) as 16-byte records, read by
   // eight loads per batch instead of seven gathers (as the λ pass).
-  const bool packed = D == 3 && ctx_.fluid_list.valid() && ctx_.fluid_list.size() == n;
+  const Real* const px = this->pack_positions();
+  const bool packed = px != nullptr;
   if (packed) {
-    packed_x_.resize(4 * n);
     packed_v_.resize(4 * n);
-    Real* px = packed_x_.data();
     Real* pv = packed_v_.data();
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
-        for (int k = 0; k < D; ++k) {
-          px[4 * i + k] = fx[k][i];
-          pv[4 * i + k] = fv[k][i];
-        }
+        for (int k = 0; k < D; ++k) pv[4 * i + k] = fv[k][i];
         pv[4 * i + 3] = rho[i];
       }
     });
   }
-  const Real* const px = packed_x_.data();
   const Real* const pv = packed_v_.data();
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {

@@ -18,7 +18,7 @@ TEST(RealtimeProfile, MarkedSceneRunsPbfWithinTheBudget) {
     const RealtimeProfile p = realtime_profile(scene, threads);
     EXPECT_TRUE(p.applied);
     EXPECT_EQ(p.spec.method, "pbf");
-    EXPECT_DOUBLE_EQ(p.budget, realtime_particles_per_thread(3) * threads);
+    EXPECT_DOUBLE_EQ(p.budget, realtime_budget(p.spec, threads));
     const auto counts = count_particles(p.spec);
     const double n = counts.fluid + counts.emitted_max;
     EXPECT_EQ(n, p.fluid_particles);
@@ -27,10 +27,15 @@ TEST(RealtimeProfile, MarkedSceneRunsPbfWithinTheBudget) {
     // never finer than the scene.
     EXPECT_GT(n, 0.75 * std::min(p.budget, written)) << threads << " threads";
     EXPECT_GE(p.spec.spacing, scene.spacing);
-    // Everything but the method and the spacing is the scene's (it has no emitters).
+    // A bounded iteration count (the scene has the defaults, 4 to 20).
+    EXPECT_EQ(p.spec.pbf_iterations, kRealtimePbfIterations);
+    EXPECT_EQ(p.spec.pbf_max_iterations, kRealtimePbfMaxIterations);
+    // Everything but the method, its iterations and the spacing is the scene's (no emitters).
     SimSpec back = p.spec;
     back.method = scene.method;
     back.spacing = scene.spacing;
+    back.pbf_iterations = scene.pbf_iterations;
+    back.pbf_max_iterations = scene.pbf_max_iterations;
     EXPECT_EQ(scene_to_json(back), scene_to_json(scene));
   }
 }
@@ -39,7 +44,7 @@ TEST(RealtimeProfile, MarkedSceneRunsPbfWithinTheBudget) {
 TEST(RealtimeProfile, EmittersCountAndKeepTheirVolume) {
   const SimSpec scene = load_scene("nozzle_obstacle_2d");
   ASSERT_FALSE(scene.emitters.empty());
-  ASSERT_GT(double(scene.emitters[0].max_particles), realtime_particles_per_thread(2));
+  ASSERT_GT(double(scene.emitters[0].max_particles), realtime_budget(scene, 1));
   const RealtimeProfile p = realtime_profile(scene, 1);
   const auto counts = count_particles(p.spec);
   EXPECT_LE(counts.fluid + counts.emitted_max, p.budget);
@@ -49,6 +54,19 @@ TEST(RealtimeProfile, EmittersCountAndKeepTheirVolume) {
   }(p.spec);
   const double written = double(scene.emitters[0].max_particles) * scene.spacing * scene.spacing;
   EXPECT_NEAR(volume, written, 0.02 * written);  // floor() of the scaled cap
+}
+
+// The budget is a rate: a scene that takes twice the substeps per second gets half the
+// particles (the 3D dam break sets 2 per frame, the double dam break keeps the default 4).
+TEST(RealtimeProfile, MoreSubstepsGetFewerParticles) {
+  const SimSpec two = load_scene("dam_break_3d"), four = load_scene("double_dam_break_3d");
+  ASSERT_EQ(two.pbf_substeps, 2);
+  ASSERT_EQ(four.pbf_substeps, 4);
+  ASSERT_EQ(two.pbf_time_step, four.pbf_time_step);
+  EXPECT_DOUBLE_EQ(realtime_budget(two, 1), 2 * realtime_budget(four, 1));
+  EXPECT_DOUBLE_EQ(realtime_budget(two, 2), 2 * realtime_budget(two, 1));
+  // The measured point: one thread keeps the 3D dam break's 10,350 particles in real time.
+  EXPECT_GE(realtime_profile(two, 1).fluid_particles, 10000);
 }
 
 TEST(RealtimeProfile, MoreThreadsGiveAFinerSpacing) {
@@ -63,6 +81,16 @@ TEST(RealtimeProfile, SmallSceneKeepsItsSpacing) {
   EXPECT_TRUE(p.applied);
   EXPECT_EQ(p.spec.method, "pbf");
   EXPECT_EQ(p.spec.spacing, 0.1);
+}
+
+// The profile only lowers PBF's iteration counts: a scene that asks for fewer keeps them.
+TEST(RealtimeProfile, FewerIterationsAreKept) {
+  SimSpec scene = load_scene("dam_break_3d");
+  apply_override(scene, "solver.pbf.iterations=2");
+  apply_override(scene, "solver.pbf.max_iterations=2");
+  const RealtimeProfile p = realtime_profile(scene, 1);
+  EXPECT_EQ(p.spec.pbf_iterations, 2);
+  EXPECT_EQ(p.spec.pbf_max_iterations, 2);
 }
 
 TEST(RealtimeProfile, UnmarkedSceneRunsAsWritten) {

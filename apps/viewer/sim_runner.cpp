@@ -166,6 +166,8 @@ void SimRunner::publish(Simulation& sim) {
   staging_.busy_s = busy_s_;
   staging_.rtf = rtf_;
   staging_.step_ms = step_ms_;
+  staging_.behind_count = behind_count_;
+  staging_.behind_s = behind_s_;
   staging_.generation = generation_;
   {
     std::lock_guard<std::mutex> lock(frame_mutex_);
@@ -220,6 +222,8 @@ double SimRunner::tick() {
       obstacle_goals_.clear();
       busy_s_ = 0;
       rtf_ = step_ms_ = 0;
+      behind_count_ = 0;
+      behind_s_ = 0;
     } catch (const std::exception& e) {
       std::lock_guard<std::mutex> lock(cmd_mutex_);
       error_ = e.what();
@@ -258,6 +262,8 @@ double SimRunner::tick() {
   double allowed = sim_anchor_ + (wall - wall_anchor_);
   if (allowed - sim_->time() > 0.1) {
     // Behind real time: do not accumulate a backlog to catch up with later.
+    ++behind_count_;
+    behind_s_ += allowed - sim_->time();
     wall_anchor_ = wall;
     sim_anchor_ = sim_->time();
     allowed = sim_anchor_;

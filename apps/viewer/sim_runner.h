@@ -33,6 +33,8 @@ struct SimFrame {
   double busy_s = 0;            // wall seconds spent in step() since the last reset
   double rtf = 0;               // simulated / real seconds over about the last second running
   double step_ms = 0;           // mean wall ms per step over the same window
+  int behind_count = 0;         // times the solver fell 0.1 s behind real time since the reset
+  double behind_s = 0;          // the simulated seconds those times skipped
   std::uint64_t serial = 0;     // increases with every published frame
   std::uint64_t generation = 0; // increases with every reset
   std::optional<DeviceParticles> device;  // GPU backend: draw from these, `particles` is empty
@@ -113,6 +115,8 @@ class SimRunner {
   std::uint64_t win_steps0_ = 0;
   double win_wall0_ = 0;
   double rtf_ = 0, step_ms_ = 0;
+  int behind_count_ = 0;
+  double behind_s_ = 0;
   std::thread thread_;
 };
 

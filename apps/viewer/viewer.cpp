@@ -21,6 +21,7 @@
 #include <thread>
 #include <vector>
 
+#include "apps/sim_backend.h"
 #include "apps/viewer/scene_view.h"
 #include "apps/viewer/view_settings.h"
 #include "apps/viewer/viewer.h"
@@ -57,6 +58,20 @@ bool have_display() {
   const char* d = std::getenv("DISPLAY");
   const char* w = std::getenv("WAYLAND_DISPLAY");
   return (d && *d) || (w && *w);
+}
+
+// Mesa's llvmpipe rasterises on worker threads, one per core by default, so under software GL
+// the drawing also takes the core the solver was left with, and the solver thread (niced, see
+// SimRunner::loop) waits. LP_NUM_THREADS = the cores neither the solver nor this thread use (0:
+// rasterise on this thread). 3D PBF dam break, 10,695 particles, Xvfb, 1 solver thread on 2
+// cores, 2026-11-25: real-time factor 0.85/0.88/0.88 by default, 0.99/0.95/0.88 with it
+// (docs/performance.md). Not when the GPU backend runs: then llvmpipe is the solver. A user's
+// own LP_NUM_THREADS wins; drivers other than llvmpipe ignore it.
+void Viewer::leave_llvmpipe_spare_cores(const SimSpec& spec) const {
+  if (choose_backend(opt_.backend, spec, "auto") == "gpu") return;
+  const int hw = std::max(1, int(std::thread::hardware_concurrency()));
+  const int spare = std::max(0, hw - threads_ - 1);
+  setenv("LP_NUM_THREADS", std::to_string(spare).c_str(), /*overwrite=*/0);
 }
 
 Viewer::WindowResult Viewer::create_window() {
@@ -298,6 +313,7 @@ int Viewer::run() {
     std::fprintf(stderr, "rtsph view: no display (DISPLAY / WAYLAND_DISPLAY unset); use `rtsph render` for headless output\n");
     return 1;
   }
+  leave_llvmpipe_spare_cores(spec);
   switch (create_window()) {
     case WindowResult::Ok: break;
     case WindowResult::InitFailed: return kGlfwInitFailed;
@@ -359,10 +375,11 @@ int Viewer::run() {
       runner_->fetch(&last);
       const SimFrame& f = last.serial > frame_.serial ? last : frame_;
       std::printf("viewer: %s %s %zu fluid particles: %ld frames in %.2f s = %.2f fps (drawn at %.0f%%); "
-                  "sim %.1f ms/frame, %.2f ms/step, sim time %.3f s, real-time factor %.4f\n",
+                  "sim %.1f ms/frame, %.2f ms/step, sim time %.3f s, real-time factor %.4f; "
+                  "fell behind real time %d times (%.3f s skipped)\n",
                   spec_.name.c_str(), spec_.method.c_str(), f.stats.fluid_particles, frames_total_, wall, frames_total_ / wall,
                   100 * scale_, 1000 * f.busy_s / std::max<long>(frames_total_, 1), f.step_ms,
-                  f.stats.time_s, f.stats.time_s / wall);
+                  f.stats.time_s, f.stats.time_s / wall, f.behind_count, f.behind_s);
       if (timer_.on()) timer_.print(renderer_->surface_times(), renderer_->splat_count());
     }
   } catch (...) {

@@ -70,6 +70,7 @@ class Viewer {
 
   enum class WindowResult { Ok, InitFailed, WindowFailed };
   WindowResult create_window();
+  void leave_llvmpipe_spare_cores(const SimSpec& spec) const;
   void load(const SimSpec& spec, bool reframe);
   void upload_frame();
   SimSpec for_viewer(const SimSpec& scene, const std::vector<std::string>& sets);

@@ -10,19 +10,27 @@
 
 namespace rtsph {
 
-double realtime_particles_per_thread(int dimension) {
-  // `rtsph view dam_break_{2,3}d --accurate --set solver.method=pbf --set fluid.spacing=S
-  // --frames 300 --report` under Xvfb, 1 solver thread (the viewer's default on 2 cores), the
-  // drawing paced while the solver is behind, 2026-11-24: real-time factor 0.98 at 6,175 and
-  // 0.97 at 7,020 (3D, the scene's 2 PBF substeps), 1.00 at 3,200 and 0.96 at 5,000 (2D) fluid
-  // particles, quiet machine (docs/performance.md). The budget keeps a margin for a busier one.
-  return dimension == 3 ? 5000 : 4000;
+double realtime_particle_substeps_per_thread(int dimension) {
+  // `rtsph view dam_break_{2,3}d --frames 300 --report` under Xvfb, 1 solver thread (the
+  // viewer's default on 2 cores), llvmpipe on the other, 2026-11-25: 3D, the scene's 2 PBF
+  // substeps per 1/60 s frame (120 per second), 3 to 4 iterations: 10,350 particles kept up in
+  // 5 runs of 5 (real-time factor 0.992-1.000, never behind). 2D, 4 substeps (240 per second):
+  // 2026-11-24, 1.00 at 3,200 and 0.96 at 5,000 with the default iterations, budget 4,000
+  // (docs/performance.md).
+  return dimension == 3 ? 10500.0 * 120 : 4000.0 * 240;
+}
+
+double realtime_budget(const SimSpec& pbf_spec, int solver_threads) {
+  const double substeps_per_s = std::max(1, pbf_spec.pbf_substeps) / pbf_spec.pbf_time_step;
+  return realtime_particle_substeps_per_thread(pbf_spec.dimension) * std::max(1, solver_threads) /
+         substeps_per_s;
 }
 
 std::string RealtimeProfile::describe() const {
   if (!applied) return "as written";
-  return fmt::format("real-time profile: pbf, fluid.spacing {:.4g} m, {:.0f} fluid particles "
-                     "at most, emitters included (budget {:.0f})",
+  return fmt::format("real-time profile: pbf ({}-{} iterations), fluid.spacing {:.4g} m, {:.0f} fluid "
+                     "particles at most, emitters included (budget {:.0f})",
+                     spec.pbf_iterations, std::max(spec.pbf_iterations, spec.pbf_max_iterations),
                      spec.spacing, fluid_particles, budget);
 }
 
@@ -52,8 +60,15 @@ RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads) {
   r.fluid_particles = particles(scene);
   if (!scene.viewer_realtime) return r;
   r.applied = true;
-  r.budget = realtime_particles_per_thread(scene.dimension) * std::max(1, solver_threads);
   apply_override(r.spec, "solver.method=pbf", "viewer.realtime");
+  // A bounded iteration count bounds the cost of the violent steps, which are the ones that fall
+  // behind real time: 3 Jacobi iterations, more while the mean compression is above
+  // solver.pbf.max_density_error, at most 4 (Macklin & Müller's range). 3D dam break, 10,695
+  // particles, 1 thread, 7.4 s: 4.15 iterations per substep with the defaults (4 to 20), 3.50
+  // with these; worst density error 14.0% → 17.7%, mean at the end 0.72% → 0.78%.
+  r.spec.pbf_iterations = std::min(r.spec.pbf_iterations, kRealtimePbfIterations);
+  r.spec.pbf_max_iterations = std::min(r.spec.pbf_max_iterations, kRealtimePbfMaxIterations);
+  r.budget = realtime_budget(r.spec, solver_threads);
   // The count scales as spacing^-D; a few rounds absorb the lattice's rounding at block edges.
   double spacing = scene.spacing;
   for (int round = 0; round < 20 && r.fluid_particles > r.budget; ++round) {

@@ -165,6 +165,11 @@ double Pbf<D>::compute_lambda() {
   const double compression = with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     const Real inv_w_dq = Real(1.0 / double(K.value(float(dq * dq))));
     return pool_.parallel_reduce(n, 0.0, [&](std::size_t b, std::size_t e) {
+      // Locals, not the captured originals: the cache stores are floats, so the compiler must
+      // otherwise assume they may overwrite the kernel's float constants and reload them.
+      const auto Kl = K;
+      const Real w_dq_scale = inv_w_dq;
+      const bool corr1 = n_corr & 1, corr2 = n_corr & 2, corr4 = n_corr & 4, corr8 = n_corr & 8;
       double block_compression = 0;
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D];
@@ -172,8 +177,8 @@ double Pbf<D>::compute_lambda() {
         f8 wf{}, wb{}, sq{}, gf[D] = {}, gb[D] = {};
         std::size_t slot = list.first_slot(i);
         auto pair = [&](auto, const f8* d, f8 r2, i8 m) {
-          const f8 G = simd::select(m, K.grad_factor(r2), f8{});
-          const f8 w = simd::select(m, K.value(r2), f8{});
+          const f8 G = simd::select(m, Kl.grad_factor(r2), f8{});
+          const f8 w = simd::select(m, Kl.value(r2), f8{});
           wf += w;
           sq += G * G * r2;
           for (int k = 0; k < D; ++k) {
@@ -182,11 +187,11 @@ double Pbf<D>::compute_lambda() {
             simd::store(cache_out[k] + slot, g);
           }
           // (W/W(Δq))ⁿ by squaring: the bits of n are loop-invariant branches.
-          const f8 q = w * inv_w_dq, q2 = q * q, q4 = q2 * q2;
-          f8 qn = (n_corr & 1) ? q : simd::splat(1.0f);
-          if (n_corr & 2) qn *= q2;
-          if (n_corr & 4) qn *= q4;
-          if (n_corr & 8) qn *= q4 * q4;
+          const f8 q = w * w_dq_scale, q2 = q * q, q4 = q2 * q2;
+          f8 qn = corr1 ? q : simd::splat(1.0f);
+          if (corr2) qn *= q2;
+          if (corr4) qn *= q4;
+          if (corr8) qn *= q4 * q4;
           simd::store(cache_out[D] + slot, qn);
           slot += simd::kWidth;
         };
@@ -198,8 +203,8 @@ double Pbf<D>::compute_lambda() {
         for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                     [&](auto j, const f8* d, f8 r2, i8 m) {
                                       const f8 w = simd::select(m, simd::at(psi, j), f8{});
-                                      wb += w * K.value(r2);
-                                      const f8 G = w * K.grad_factor(r2);
+                                      wb += w * Kl.value(r2);
+                                      const f8 G = w * Kl.grad_factor(r2);
                                       for (int k = 0; k < D; ++k) gb[k] += G * d[k];
                                     });
         const double r = double(mass) * simd::hsum(wf) + simd::hsum(wb);

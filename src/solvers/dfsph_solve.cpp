@@ -110,13 +110,14 @@ void Dfsph<D>::compute_factors() {
   const double tiny = 1e-6 * this->lattice_gradient_sum();
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      const auto Kl = K;  // a local: the float stores below cannot then overwrite its constants
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
         f8 sq{}, cnt{}, rate{}, gf[D] = {}, gb[D] = {};
         std::size_t slot = list.first_slot(i);
         auto pair = [&](auto, const f8* d, f8 r2, i8 m) {
-          const f8 G = simd::select(m, K.grad_factor(r2), f8{});
+          const f8 G = simd::select(m, Kl.grad_factor(r2), f8{});
           sq += G * G * r2;
           cnt += simd::select(m, f8{} + 1.0f, f8{});
           for (int k = 0; k < D; ++k) {
@@ -133,7 +134,7 @@ void Dfsph<D>::compute_factors() {
         }
         for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                     [&](auto j, const f8* d, f8 r2, i8 m) {
-                                      const f8 G = simd::select(m, simd::at(psi, j) * K.grad_factor(r2), f8{});
+                                      const f8 G = simd::select(m, simd::at(psi, j) * Kl.grad_factor(r2), f8{});
                                       cnt += simd::select(m, f8{} + 1.0f, f8{});
                                       for (int k = 0; k < D; ++k) {
                                         gb[k] += G * d[k];

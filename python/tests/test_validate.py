@@ -42,7 +42,7 @@ def test_a_failing_case_exits_1(tmp_path, monkeypatch):
     assert json.loads((tmp_path / "summary.json").read_text())["passed"] is False
 
 
-@pytest.mark.parametrize("args", [["no_such_case"], ["--method", "sph2014"], ["--backend", "gpu"], ["--threads", "-1"],
+@pytest.mark.parametrize("args", [["no_such_case"], ["--method", "sph2014"], ["--backend", "cuda"], ["--threads", "-1"],
                                   ["--no-such-flag"]])
 def test_bad_arguments_exit_2(args, tmp_path):
     assert vmain.main(args + ["--out", str(tmp_path)]) == 2

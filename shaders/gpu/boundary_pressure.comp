@@ -8,10 +8,10 @@ void main() {
   vec3 xb = bpos[b].xyz, g = P.gravity.xyz;
   uint key = bkey[b];
   float sw = 0.0, sp = 0.0, sg = 0.0;
-  for (int r = 0; r < kRows; ++r) {
-    uvec2 c = stencil_row(key, r);
+  for (int r = 0; r < stencil_count(); ++r) {
+    uvec2 c = stencil_range(key, r);
     for (uint j = fstart[c.x]; j < fstart[c.y]; ++j) {
-      vec3 d = xb - pos[j].xyz;
+      vec3 d = min_image(xb - pos[j].xyz);
       float r2 = dot(d, d);
       if (r2 >= P.support2) continue;
       float w = kernel_w(r2);

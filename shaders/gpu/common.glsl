@@ -81,6 +81,10 @@ uint cell_key(vec3 p) {
   for (int a = 0; a < DIM; ++a) {
     double f = (double(p[a]) - P.grid_origin[a]) * P.grid_inv_cell[a];
     int dims = P.grid_dims[a];
+    if (P.period[a] > 0.0) {  // wrap into the period's cells 1..n (an overshoot past the seam)
+      double n = double(dims - 2);
+      f = 1.0lf + (f - 1.0lf) - n * floor((f - 1.0lf) / n);
+    }
     int c = f >= 1.0lf ? (f < double(dims - 1) ? int(f) : dims - 2) : 1;  // NaN -> cell 1
     key += uint(c) * stride;
     stride *= uint(dims);
@@ -88,17 +92,43 @@ uint cell_key(vec3 p) {
   return key;
 }
 
-// Pushes a particle that a correction took through a container wall plane back onto it.
+// The minimum image of an offset x_i - x_j along the periodic axes (UniformGrid::wrap_offsets):
+// |d| <= period/2.
+vec3 min_image(vec3 d) {
+  if (P.period.w == 0.0) return d;
+  for (int k = 0; k < DIM; ++k) {
+    float L = P.period[k], half_L = 0.5 * P.period[k];
+    if (L <= 0.0) continue;
+    d[k] = d[k] > half_L ? d[k] - L : d[k];
+    d[k] = d[k] < -half_L ? d[k] + L : d[k];
+  }
+  return d;
+}
+
+// Along a periodic axis, leaving through one end is entering through the other.
+float wrap_periodic(float x, int k) {
+  return x >= P.wall_hi[k] ? x - P.period[k] : x < P.wall_lo[k] ? x + P.period[k] : x;
+}
+
+// Pushes a particle that a correction took through a container wall plane back onto it
+// (periodic axes have no walls).
 vec3 clamp_to_walls(vec3 x) {
-  for (int k = 0; k < DIM; ++k) x[k] = x[k] < P.wall_lo[k] ? P.wall_lo[k] : x[k] > P.wall_hi[k] ? P.wall_hi[k] : x[k];
+  for (int k = 0; k < DIM; ++k)
+    if (P.period[k] == 0.0) x[k] = x[k] < P.wall_lo[k] ? P.wall_lo[k] : x[k] > P.wall_hi[k] ? P.wall_hi[k] : x[k];
   return x;
 }
 
 // The safety net (FluidWorld::put_back_escaped): a non-finite or escaped position goes a
-// quarter spacing inside and loses its outward velocity; returns whether it moved.
+// quarter spacing inside and loses its outward velocity; returns whether it moved. Along a
+// periodic axis a finite overshoot wraps instead.
 bool put_back(inout vec3 x, inout vec3 v) {
   bool moved = false;
   for (int k = 0; k < DIM; ++k) {
+    if (P.period[k] > 0.0 && !isnan(x[k]) && !isinf(x[k])) {
+      x[k] = wrap_periodic(x[k], k);
+      if (isnan(v[k]) || isinf(v[k])) { v[k] = 0.0; moved = true; }
+      continue;
+    }
     float lo = P.wall_lo[k], hi = P.wall_hi[k];
     if (!(x[k] >= lo)) { x[k] = lo + P.put_back_margin; v[k] = max(v[k], 0.0); moved = true; }
     else if (!(x[k] <= hi)) { x[k] = hi - P.put_back_margin; v[k] = min(v[k], 0.0); moved = true; }
@@ -122,4 +152,35 @@ uvec2 stencil_row(uint key, int r) {
 #endif
   int k = int(key) + dz * P.grid_dims.x * P.grid_dims.y + dy * P.grid_dims.x;
   return uvec2(uint(k - 1), uint(k + 2));
+}
+
+// The candidate ranges of a pair loop: `for (r < stencil_count()) c = stencil_range(key, r)`.
+// Without periodic axes, the rows above. With them (UniformGrid::for_each_periodic_range), the
+// rows along y and z continue past the seam, and a row along x that crosses it is split into
+// its three cells: three ranges per row, those a row does not need empty.
+int stencil_count() { return P.period.w == 0.0 ? kRows : 3 * kRows; }
+
+int wrap_cell(int a, int c) {  // interior cells are 1..dims-2
+  if (P.period[a] == 0.0) return c;
+  int n = P.grid_dims[a] - 2;
+  return c < 1 ? c + n : c > n ? c - n : c;
+}
+
+uvec2 stencil_range(uint key, int r) {
+  if (P.period.w == 0.0) return stencil_row(key, r);
+  int row = r / 3, part = r % 3;
+  int cx = int(key % uint(P.grid_dims.x));
+  uint rest = key / uint(P.grid_dims.x);
+  int cy = int(rest % uint(P.grid_dims.y)), cz = int(rest / uint(P.grid_dims.y));
+#if DIM == 3
+  int dy = row % 3 - 1, dz = row / 3 - 1;
+#else
+  int dy = row - 1, dz = 0;
+#endif
+  int y = wrap_cell(1, cy + dy), z = DIM == 3 ? wrap_cell(2, cz + dz) : 0;
+  int base = (z * P.grid_dims.y + y) * P.grid_dims.x;
+  bool split = P.period.x > 0.0 && (cx == 1 || cx == P.grid_dims.x - 2);
+  if (!split) return part == 0 ? uvec2(uint(base + cx - 1), uint(base + cx + 2)) : uvec2(0u, 0u);
+  int x = wrap_cell(0, cx + part - 1);
+  return uvec2(uint(base + x), uint(base + x + 1));
 }

@@ -10,16 +10,16 @@ void main() {
   vec3 xi = pos[i].xyz;
   uint key = fkey[i];
   float wf = 0.0, wb = 0.0;
-  for (int r = 0; r < kRows; ++r) {
-    uvec2 c = stencil_row(key, r);
+  for (int r = 0; r < stencil_count(); ++r) {
+    uvec2 c = stencil_range(key, r);
     for (uint j = fstart[c.x]; j < fstart[c.y]; ++j) {
-      vec3 d = xi - pos[j].xyz;
+      vec3 d = min_image(xi - pos[j].xyz);
       float r2 = dot(d, d);
       if (r2 < P.support2) wf += kernel_w(r2);
     }
     for (uint j = bstart[c.x]; j < bstart[c.y]; ++j) {
       vec4 b = bpos[j];
-      vec3 d = xi - b.xyz;
+      vec3 d = min_image(xi - b.xyz);
       float r2 = dot(d, d);
       if (r2 < P.support2) wb += b.w * kernel_w(r2);
     }

@@ -1,7 +1,8 @@
 // A kick and a drift, fused (the CPU's kick, drift, put_back_escaped): WCSPH's first half kick
 // (kick_dt = dt/2) or PBF's prediction (kick_dt = dt):
 //   v += a kick_dt;  x += v dt against the container's wall planes: a particle whose path crosses a
-//   plane stops on it and loses the velocity component into the wall. Then the safety net: a
+//   plane stops on it and loses the velocity component into the wall; along a periodic axis it
+//   wraps to the other end. Then the safety net: a
 //   non-finite position is put back a quarter spacing inside and counted (a diagnostic).
 BUFFER_POS BUFFER_VEL BUFFER_ACC
 layout(std430, binding = RTSPH_B_REDUCE) buffer Counter { uint put_back_count; };
@@ -11,6 +12,10 @@ void main() {
   vec3 v = vel[i].xyz + acc[i].xyz * P.kick_dt;
   vec3 x = pos[i].xyz;
   for (int k = 0; k < DIM; ++k) {
+    if (P.period[k] > 0.0) {  // no walls: wrap (FluidWorld::drift)
+      x[k] = wrap_periodic(x[k] + v[k] * P.dt, k);
+      continue;
+    }
     float lo = P.wall_lo[k], hi = P.wall_hi[k];
     float xn = x[k] + v[k] * P.dt, vk = v[k];
     bool below = xn < lo, above = xn > hi;

@@ -9,11 +9,11 @@ void main() {
   vec3 xi = pos[i].xyz, g = P.gravity.xyz;
   uint key = cell_key(xi);
   vec3 a = vec3(0.0);
-  for (int r = 0; r < kRows; ++r) {
-    uvec2 c = stencil_row(key, r);
+  for (int r = 0; r < stencil_count(); ++r) {
+    uvec2 c = stencil_range(key, r);
     for (uint j = bstart[c.x]; j < bstart[c.y]; ++j) {
       vec4 b = bpos[j];
-      vec3 d = xi - b.xyz;
+      vec3 d = min_image(xi - b.xyz);
       float r2 = dot(d, d);
       if (r2 >= P.support2) continue;
       float pib = -dot(g, d) * P.inv_rho0;

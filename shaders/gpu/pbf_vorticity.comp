@@ -10,10 +10,10 @@ void main() {
   float wabs = length(wi);
   uint key = fkey[i];
   vec3 eta = vec3(0.0);
-  for (int r = 0; r < kRows; ++r) {
-    uvec2 c = stencil_row(key, r);
+  for (int r = 0; r < stencil_count(); ++r) {
+    uvec2 c = stencil_range(key, r);
     for (uint j = fstart[c.x]; j < fstart[c.y]; ++j) {
-      vec3 d = xi - pos[j].xyz;
+      vec3 d = min_image(xi - pos[j].xyz);
       float r2 = dot(d, d);
       if (r2 >= P.support2) continue;
       eta += ((P.mass / dens[j].x) * (length(omega[j].xyz) - wabs) * kernel_g(r2)) * d;

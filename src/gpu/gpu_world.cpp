@@ -58,8 +58,6 @@ void kernel_constants(KernelType type, double h, SphParams& p) {
 template <int D>
 GpuWorld<D>::GpuWorld(const SimSpec& spec, int threads) : FluidWorld<D>(spec, threads) {
   if (const std::string why = compute_support_problem(); !why.empty()) throw std::runtime_error(why);
-  if (spec.periodic != PeriodicAxes::None)  // backend.cpp's gpu_cannot_run says so to users
-    throw std::invalid_argument("the GPU backend has no periodic axes yet");
   defines_ = {fmt::format("DIM {}", D), fmt::format("KERNEL {}", int(spec.kernel))};
   compile_programs();
   glCreateBuffers(1, &params_ubo_);
@@ -132,6 +130,9 @@ void GpuWorld<D>::write_params(double dt, double kick_dt) {
   for (int k = 0; k < D; ++k) { lo[k] = Real(prm.domain_min[k]); hi[k] = Real(prm.domain_max[k]); }
   p.wall_lo = {lo[0], lo[1], lo[2], 0};
   p.wall_hi = {hi[0], hi[1], hi[2], 0};
+  float period[3] = {0, 0, 0};
+  for (int k = 0; k < D; ++k) period[k] = grid.period(k);
+  p.period = {period[0], period[1], period[2], grid.any_periodic() ? 1.0f : 0.0f};
   const Brush& brush = this->brush_;
   p.brush = {float(brush.center[0]), float(brush.center[1]), float(brush.center[2]), float(brush.radius)};
   p.brush_strength = float(brush.strength);

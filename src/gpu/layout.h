@@ -79,8 +79,9 @@ struct SphParams {
   dvec4 grid_inv_cell;  //   and the GPU must put every particle in the same cell)
   ivec4 grid_dims;      // cells per axis (z = 1 in 2D), w = total cells
   vec4 gravity;         // m/s^2, gravity + body force
-  vec4 wall_lo;         // m, the container's wall planes (drift's contact)
-  vec4 wall_hi;
+  vec4 wall_lo;         // m, the container's wall planes (drift's contact); along a periodic
+  vec4 wall_hi;         //   axis, the period's ends (a particle wraps there instead)
+  vec4 period;          // m, xyz: the period along each periodic axis, 0 elsewhere; w: 1 when any
   vec4 brush;           // xyz centre (m), w radius (m)
   vec4 kernel_a;        // the kernel's constants, as its CPU object holds them (core/kernels.h)
   vec4 kernel_b;
@@ -105,7 +106,7 @@ struct Obstacle {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(SphParams) == 256, "SphParams must match its std140 layout");
+static_assert(sizeof(SphParams) == 288, "SphParams must match its std140 layout");
 static_assert(sizeof(Obstacle) == 96, "Obstacle must match its std430 layout");
 }  // namespace rtsph::gpu::glsl
 #endif

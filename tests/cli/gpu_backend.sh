@@ -64,9 +64,9 @@ for args in "--set solver.method=dfsph"; do
   check test "$(wc -l <"$work/e")" -eq 1
   check grep -q "solver.method" "$work/e"
 done
-"$bin" run validate_poiseuille_2d --backend gpu --steps 1 2>"$work/e" >/dev/null
-check test $? -eq 2
-check grep -q "domain.periodic" "$work/e"
+# Periodic axes run on the GPU too (the Poiseuille channel of `rtsph validate`).
+"$bin" run validate_poiseuille_2d --backend gpu --steps 20 --quiet >/dev/null 2>"$work/e"
+check test $? -eq 0
 # A driver without OpenGL 4.3 (Mesa told to offer 3.3).
 MESA_GL_VERSION_OVERRIDE=3.3 "$bin" run dam_break_2d "${small[@]}" --backend gpu --steps 1 2>"$work/e" >/dev/null
 check test $? -eq 2

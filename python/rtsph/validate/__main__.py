@@ -15,7 +15,8 @@ def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="rtsph validate", description="Run rtsph's validation cases and write a report.")
     ap.add_argument("cases", nargs="*", metavar="CASE", help=f"cases to run (default: all): {', '.join(CASES)}")
     ap.add_argument("--method", default="all", help="wcsph, pbf, dfsph or all (default)")
-    ap.add_argument("--backend", default="cpu", help="cpu (the only backend so far)")
+    ap.add_argument("--backend", default="cpu",
+                    help="cpu (default) or gpu (OpenGL compute; cases the GPU cannot run yet are n/a)")
     lvl = ap.add_mutually_exclusive_group()
     lvl.add_argument("--quick", action="store_const", const="quick", dest="level", help="coarse sizes (CI; default)")
     lvl.add_argument("--full", action="store_const", const="full", dest="level", help="report resolution and convergence")
@@ -34,8 +35,8 @@ def main(argv=None) -> int:
     if any(m not in METHODS for m in methods):
         print(f"rtsph validate: --method {args.method!r}: expected wcsph, pbf, dfsph or all", file=sys.stderr)
         return 2
-    if args.backend != "cpu":
-        print(f"rtsph validate: --backend {args.backend!r}: only the cpu backend exists so far", file=sys.stderr)
+    if args.backend not in ("cpu", "gpu"):
+        print(f"rtsph validate: --backend {args.backend!r}: expected cpu or gpu", file=sys.stderr)
         return 2
     if args.threads < 0:
         print("rtsph validate: --threads must be 0 (all cores) or more", file=sys.stderr)
@@ -45,8 +46,9 @@ def main(argv=None) -> int:
     for case in args.cases or list(CASES):
         for m in methods:
             t = time.perf_counter()
-            print(f"rtsph validate: {case} ({m}, {level}) ...", end="", file=sys.stderr, flush=True)
-            r = run_case(case, m, level, args.threads)
+            where = "" if args.backend == "cpu" else f", {args.backend}"
+            print(f"rtsph validate: {case} ({m}{where}, {level}) ...", end="", file=sys.stderr, flush=True)
+            r = run_case(case, m, level, args.threads, args.backend)
             results.append(r)
             status = "n/a" if not r.applicable else ("pass" if r.passed else "FAIL")
             err = "" if not r.applicable else f" {r.error:.4g} (tolerance {r.tolerance:.4g})"
@@ -54,7 +56,7 @@ def main(argv=None) -> int:
                 err = f": did not finish: {r.notes}"
             print(f" {status}{err}, {r.particles} particles, {time.perf_counter() - t:.1f} s", file=sys.stderr)
     wall = time.perf_counter() - t0
-    write_report(args.out, results, level, args.threads, wall)
+    write_report(args.out, results, level, args.threads, wall, args.backend)
     failed = [r for r in results if r.applicable and not r.passed]
     print(f"rtsph validate: {len(results) - len(failed)}/{len(results)} passed or n/a in {wall:.0f} s; "
           f"report: {args.out}/report.html", file=sys.stderr)

@@ -55,7 +55,8 @@ def _fmt(x: float) -> str:
     return "n/a" if x != x else f"{100 * x:.2f}%" if abs(x) < 10 else f"{x:.3g}"
 
 
-def write_report(out: str, results: List[Result], level: str, threads: int, wall_s: float) -> None:
+def write_report(out: str, results: List[Result], level: str, threads: int, wall_s: float,
+                 backend: str = "cpu") -> None:
     os.makedirs(out, exist_ok=True)
     by_case: Dict[str, List[Result]] = {}
     for r in results:
@@ -68,7 +69,7 @@ def write_report(out: str, results: List[Result], level: str, threads: int, wall
                 for row in zip(*(r.series[c] for c in cols)):
                     w.writerow([repr(float(v)) for v in row])
     meta = {"date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-            "level": level, "threads": threads, "wall_s": wall_s,
+            "level": level, "backend": backend, "threads": threads, "wall_s": wall_s,
             "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),
             "cpus": os.cpu_count(), "python": platform.python_version()}
     summary = {"meta": meta, "passed": all(r.passed or not r.applicable for r in results), "cases": [
@@ -120,9 +121,9 @@ def write_report(out: str, results: List[Result], level: str, threads: int, wall
 body{{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}} table{{border-collapse:collapse;margin:.5em 0}}
 td,th{{border:1px solid #ccc;padding:3px 8px;font-size:90%}} .pass{{background:#dfd}} .fail{{background:#fdd}}
 .na{{color:#888}} img{{max-width:100%}}</style></head><body>
-<h1>rtsph validation ({level})</h1>
+<h1>rtsph validation ({level}, {backend} backend)</h1>
 <p>{html.escape(meta['date'])}, {meta['cpus']} CPUs, {threads or 'all'} solver threads, {wall_s:.0f} s in all.
-Every case: <code>rtsph validate --{level}</code>; the narrative is docs/validation.md.</p>
+Every case: <code>rtsph validate --{level} --backend {backend}</code>; the narrative is docs/validation.md.</p>
 <table><tr><th>case</th>{''.join(f'<th>{m}</th>' for m in methods)}</tr>{''.join(rows)}</table>
 {''.join(sections)}</body></html>"""
     with open(os.path.join(out, "report.html"), "w") as f:

@@ -13,21 +13,21 @@ from rtsph.validate.cases import Result
 
 def test_passing_cases_write_the_report(tmp_path):
     out = tmp_path / "v"
-    r = subprocess.run([sys.executable, "-m", "rtsph.validate", "poiseuille_2d", "dam_break_2d", "--quick",
+    r = subprocess.run([sys.executable, "-m", "rtsph.validate", "poiseuille_2d", "couette_2d", "--quick",
                         "--out", str(out), "--threads", "2"], capture_output=True, text=True, timeout=600)
     assert r.returncode == 0, r.stderr
     summary = json.loads((out / "summary.json").read_text())
     assert summary["passed"] is True and summary["meta"]["level"] == "quick"
     rows = {(c["case"], c["method"]): c for c in summary["cases"]}
-    assert set(rows) == {(c, m) for c in ("poiseuille_2d", "dam_break_2d") for m in validate.METHODS}
+    assert set(rows) == {(c, m) for c in ("poiseuille_2d", "couette_2d") for m in validate.METHODS}
     assert rows[("poiseuille_2d", "pbf")]["applicable"] is False  # PBF has no laminar viscosity
     pw = rows[("poiseuille_2d", "wcsph")]
     assert pw["passed"] and pw["error"] <= pw["tolerance"] == 0.02
     page = (out / "report.html").read_text()
     assert "data:image/png;base64," in page and "poiseuille_2d" in page and "n/a" in page
     assert (out / "poiseuille_2d.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
-    header = (out / "dam_break_2d_dfsph.csv").read_text().splitlines()[0]
-    assert header == "T,Z"
+    header = (out / "couette_2d_dfsph.csv").read_text().splitlines()[0]
+    assert header.split(",")[0] == "t_s"
     assert "pass" in r.stderr  # a progress line per case
 
 
@@ -132,3 +132,14 @@ def test_a_case_the_engine_cannot_build_says_why(monkeypatch):
     r = cases.run_case("old_engine", "wcsph", "quick", 1)
     assert r.metric == "(did not finish)" and not r.passed
     assert "unknown key" in r.notes and "scripts/setup-python.sh" in r.notes
+
+
+def test_the_column_height_metric_reads_the_table():
+    # Martin & Moyce's own points read back exactly; a column 10% higher everywhere reads 10%;
+    # a clock shift moves the comparison along τ.
+    from rtsph.validate.cases import MARTIN_MOYCE_HEIGHT, _height_error
+    tau = [0.0] + [p[0] for p in MARTIN_MOYCE_HEIGHT]
+    H = [1.0] + [p[1] for p in MARTIN_MOYCE_HEIGHT]
+    assert _height_error(tau, H, 0.0) == pytest.approx(0.0, abs=1e-12)
+    assert _height_error(tau, [1.1 * h for h in H], 0.0) == pytest.approx(0.1, rel=1e-9)
+    assert _height_error(tau, H, 0.2) > 0.02

@@ -7,6 +7,12 @@ namespace rtsph::gpu {
 
 template <int D>
 GpuWcsph<D>::GpuWcsph(const SimSpec& spec, int threads) : GpuWorld<D>(spec, threads) {
+  // Optional (fluid.hydrostatic_start), on the CPU arrays as the CPU's Wcsph does, then again
+  // onto the GPU.
+  if (spec.hydrostatic_start) {
+    this->compress_hydrostatically();
+    this->upload_fluid(0, this->fluid_.size());
+  }
   update_forces();
   this->mark_stale();
   this->reset_stage_times();

@@ -40,6 +40,8 @@ class GpuWorld : public FluidWorld<D> {
   GLuint density_buffer() const { return dens_.id(); }
 
  protected:
+  /// Copies fluid particles [first, first + count) of the CPU arrays into the GPU buffers.
+  void upload_fluid(std::size_t first, std::size_t count);
   GpuWorld(const SimSpec& spec, int threads);
 
   // Stages, in the order a step calls them.
@@ -73,7 +75,6 @@ class GpuWorld : public FluidWorld<D> {
 
  private:
   void compile_programs();
-  void upload_fluid(std::size_t first, std::size_t count);
   void upload_boundary();
   void upload_obstacles();
   void sort_boundary();

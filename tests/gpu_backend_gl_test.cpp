@@ -480,7 +480,9 @@ TEST_P(GpuMethods, PeriodicChannelFollowsTheCpu) {
     // WCSPH stays with the CPU to round-off. PBF's Jacobi corrections amplify round-off (a
     // resting periodic lattice jitters by millimetres by itself, physics_periodic_test.cpp):
     // after 100 steps its particles are compared as a flow, by the mean velocity.
-    if (!pbf) EXPECT_LT(worst100, 0.01 * spec.spacing) << dim << "D";
+    if (!pbf) {
+      EXPECT_LT(worst100, 0.01 * spec.spacing) << dim << "D";
+    }
     EXPECT_NEAR(vg, vc, 0.01 * std::abs(vc)) << dim << "D";
     EXPECT_EQ(outside, 0) << dim << "D: positions wrap into the period";
     EXPECT_GT(vg, 0.5) << dim << "D: the stream still flows through the seams";
@@ -492,39 +494,17 @@ TEST_P(GpuMethods, PeriodicChannelFollowsTheCpu) {
 // Start-up Poiseuille flow on the GPU (physics_periodic_test.cpp's case: Morris, Fox & Zhu 1997,
 // eq. 21): within 2% of the peak velocity of the series solution, as on the CPU.
 TEST_F(GpuBackend, WcsphPoiseuilleStartUpFollowsTheSeriesSolution) {
-  const double L = 1e-3, nu = 1e-6, F = 2e-4, spacing = L / 20;
-  SimSpec s;
-  s.name = "poiseuille";
-  s.dimension = 2;
-  s.spacing = spacing;
-  s.domain_max = {{8 * spacing, L, 0}};
-  s.periodic = PeriodicAxes::X;
-  s.gravity = {{0, 0, 0}};
-  s.body_force = {{F, 0, 0}};
-  s.viscosity = nu;
-  s.artificial_viscosity = 0;
-  s.speed_of_sound = 100 * F * L * L / (8 * nu);
-  s.fluid_blocks.push_back({{{0, 0, 0}}, s.domain_max, {}});
-  auto gpu = gpu::make_gpu_simulation(s, 1);
-  const double vmax = F * L * L / (8 * nu);
-  auto exact = [&](double y, double t) {
-    double v = F / (2 * nu) * y * (L - y);
-    for (int n = 0; n < 200; ++n) {
-      const double k = 2 * n + 1;
-      v -= 4 * F * L * L / (nu * std::pow(std::numbers::pi, 3) * k * k * k) * std::sin(std::numbers::pi * y * k / L) *
-           std::exp(-k * k * std::numbers::pi * std::numbers::pi * nu * t / (L * L));
-    }
-    return v;
-  };
+  using P = test::Poiseuille;
+  auto gpu = gpu::make_gpu_simulation(P::scene("wcsph"), 1);
   for (double t_check : {0.0225, 0.1125, 0.225}) {
     while (gpu->time() < t_check) gpu->step();
     const ParticleView v = gpu->fluid();
     double worst = 0;
     for (std::size_t i = 0; i < v.count; ++i)
-      worst = std::max(worst, std::abs(double(v.v[0][i]) - exact(v.x[1][i], gpu->time())));
+      worst = std::max(worst, std::abs(double(v.v[0][i]) - P::exact(v.x[1][i], gpu->time())));
     std::printf("GPU wcsph t = %.4f s: worst |v - v_exact| = %.2f%% of v_max (%llu steps)\n", gpu->time(),
-                100 * worst / vmax, static_cast<unsigned long long>(gpu->step_count()));
-    EXPECT_LT(worst, 0.02 * vmax) << "at t = " << gpu->time();
+                100 * worst / P::vmax, static_cast<unsigned long long>(gpu->step_count()));
+    EXPECT_LT(worst, 0.02 * P::vmax) << "at t = " << gpu->time();
   }
   EXPECT_EQ(gpu->stats().particles_put_back, 0u);
 }

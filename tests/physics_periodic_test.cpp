@@ -21,6 +21,7 @@
 #include "core/parallel.h"
 #include "scene/scene.h"
 #include "solvers/simulation.h"
+#include "test_scenes.h"
 
 namespace rtsph {
 namespace {
@@ -169,51 +170,25 @@ INSTANTIATE_TEST_SUITE_P(All, PeriodicMethods, ::testing::Values("wcsph", "pbf",
                          [](const auto& info) { return info.param; });
 
 // Morris, Fox & Zhu 1997, eq. 21: start-up of plane Poiseuille flow between plates at y = 0 and
-// y = L driven by a body force F, from rest:
-//   v(y,t) = F/(2ν) y (y − L) + Σ_n 4F L²/(ν π³ (2n+1)³) sin(π y (2n+1)/L) exp(−(2n+1)² π² ν t / L²)
-// (the sign makes v positive along F). Their set-up: L = 1 mm, ν = 1e-6 m²/s, F = 2e-4 m/s²,
-// so v_max = F L²/(8ν) = 2.5e-5 m/s and Re = 2.5e-2.
-double poiseuille(double y, double t, double L, double nu, double F) {
-  double v = F / (2 * nu) * y * (L - y);
-  for (int n = 0; n < 200; ++n) {
-    const double k = 2 * n + 1;
-    v -= 4 * F * L * L / (nu * std::pow(std::numbers::pi, 3) * k * k * k) * std::sin(std::numbers::pi * y * k / L) *
-         std::exp(-k * k * std::numbers::pi * std::numbers::pi * nu * t / (L * L));
-  }
-  return v;
-}
-
+// y = L driven by a body force F, from rest (test_scenes.h: the set-up and the series solution;
+// Re = 2.5e-2).
 // WCSPH and DFSPH share the Morris laminar viscosity; PBF's viscosity is XSPH smoothing, which
 // models no viscosity ν, so Poiseuille flow is not a PBF case.
 class Poiseuille : public ::testing::TestWithParam<std::string> {};
 
 TEST_P(Poiseuille, StartUpFollowsTheSeriesSolution) {
-  const double L = 1e-3, nu = 1e-6, F = 2e-4, spacing = L / 20;
-  SimSpec s;
-  s.method = GetParam();
-  s.name = "poiseuille";
-  s.dimension = 2;
-  s.spacing = spacing;
-  s.domain_max = {{8 * spacing, L, 0}};
-  s.periodic = PeriodicAxes::X;
-  s.gravity = {{0, 0, 0}};
-  s.body_force = {{F, 0, 0}};
-  s.viscosity = nu;
-  s.artificial_viscosity = 0;
-  s.speed_of_sound = 100 * F * L * L / (8 * nu);  // 100·v_max: density within 1e-4 of ρ0
-  s.fluid_blocks.push_back({{{0, 0, 0}}, s.domain_max, {}});
-  auto sim = make_simulation(s, 2);
-  const double vmax = F * L * L / (8 * nu);
+  using P = test::Poiseuille;
+  auto sim = make_simulation(P::scene(GetParam()), 2);
   for (double t_check : {0.0225, 0.045, 0.1125, 0.225, 1.0}) {
     while (sim->time() < t_check) sim->step();
     const ParticleView v = sim->fluid();
     double worst = 0;
     for (std::size_t i = 0; i < v.count; ++i)
-      worst = std::max(worst, std::abs(double(v.v[0][i]) - poiseuille(v.x[1][i], sim->time(), L, nu, F)));
+      worst = std::max(worst, std::abs(double(v.v[0][i]) - P::exact(v.x[1][i], sim->time())));
     std::printf("%s t = %.4f s: worst |v - v_exact| = %.2f%% of v_max (%llu steps)\n", GetParam().c_str(),
-                sim->time(), 100 * worst / vmax,
+                sim->time(), 100 * worst / P::vmax,
                 static_cast<unsigned long long>(sim->step_count()));
-    EXPECT_LT(worst, 0.02 * vmax) << "at t = " << sim->time();
+    EXPECT_LT(worst, 0.02 * P::vmax) << "at t = " << sim->time();
   }
   EXPECT_EQ(sim->stats().particles_put_back, 0u);
 }

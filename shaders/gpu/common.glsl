@@ -28,6 +28,7 @@ layout(std140, binding = RTSPH_U_PARAMS) uniform ParamsBlock { SphParams P; };
 #define BUFFER_DELTA layout(std430, binding = RTSPH_B_DELTA) buffer DeltaBuf { vec4 delta[]; };
 #define BUFFER_OMEGA layout(std430, binding = RTSPH_B_OMEGA) buffer OmegaBuf { vec4 omega[]; };
 #define BUFFER_OBSTACLES layout(std430, binding = RTSPH_B_OBSTACLES) buffer ObstacleBuf { Obstacle obstacles[]; };
+#define BUFFER_NORMAL layout(std430, binding = RTSPH_B_NORMAL) buffer NormalBuf { vec4 nrm[]; };
 
 // ---- Kernels: the CPU's formulas (core/kernels.h) with the constants its objects hold.
 #if KERNEL == 0

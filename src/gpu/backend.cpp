@@ -17,9 +17,6 @@ std::string gpu_cannot_run(const SimSpec& spec) {
   if (!gpu_supports_method(spec.method))
     return fmt::format("scene '{}': solver.method = \"{}\": the GPU backend runs \"wcsph\" and \"pbf\" so far; use --backend cpu",
                        spec.name, spec.method);
-  if (spec.surface_tension > 0 || spec.adhesion > 0)
-    return fmt::format("scene '{}': fluid.surface_tension / fluid.adhesion: the GPU backend has no surface "
-                       "tension yet; use --backend cpu", spec.name);
   if (spec.shifting > 0 || spec.transport_velocity > 0)
     return fmt::format("scene '{}': solver.shifting / solver.transport_velocity: the GPU backend has neither "
                        "yet; use --backend cpu", spec.name);

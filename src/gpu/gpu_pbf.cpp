@@ -41,6 +41,7 @@ void GpuPbf<D>::step() {
     this->write_params(dt, dt);
     this->bind_all();
     external_.dispatch(this->fluid_.size());       // gravity, brush, walls' hydrostatic part (line 2)
+    this->surface_forces();                        // optional: Akinci 2013 (f_ext, as on the CPU)
     this->kick_drift();                            // v += Δt a; x* = x + Δt v, walls (line 3)
     this->advance_scene_gpu(this->time_ + dt, dt); // obstacles, emitters
   }

@@ -57,6 +57,7 @@ void GpuWcsph<D>::update_forces() {
   }
   ScopedTimer timer(this->times_.forces_s);
   this->forces();                       // pressure, viscosity, gravity, brush
+  this->surface_forces();               // optional: Akinci 2013 cohesion, curvature, adhesion
 }
 
 template class GpuWcsph<2>;

@@ -93,6 +93,8 @@ void GpuWorld<D>::compile_programs() {
   }
   boundary_pressure_ = ComputeProgram("boundary_pressure.comp", defines_);
   forces_ = ComputeProgram("forces.comp", defines_);
+  surface_normal_ = ComputeProgram("surface_normal.comp", defines_);
+  surface_forces_ = ComputeProgram("surface_forces.comp", defines_);
   kick_ = ComputeProgram("kick.comp", defines_);
   kick_drift_ = ComputeProgram("kick_drift.comp", defines_);
   move_boundary_ = ComputeProgram("move_boundary.comp", defines_);
@@ -133,6 +135,14 @@ void GpuWorld<D>::write_params(double dt, double kick_dt) {
   float period[3] = {0, 0, 0};
   for (int k = 0; k < D; ++k) period[k] = grid.period(k);
   p.period = {period[0], period[1], period[2], grid.any_periodic() ? 1.0f : 0.0f};
+  {
+    // Akinci 2013's constants as FluidWorld::add_surface_forces computes them.
+    const double H = prm.support, pi = 3.14159265358979323846;
+    const double c_norm = D == 3 ? 32.0 / (pi * std::pow(H, 9)) : 25280.0 / (627.0 * pi * std::pow(H, 8));
+    const double a_norm = D == 3 ? 0.007 / std::pow(H, 3.25) : (13.0 / 1200.0) / std::pow(H, 2.25);
+    p.surface = {Real(s.surface_tension), Real(s.adhesion), Real(c_norm), Real(a_norm)};
+    p.surface_b = {Real(H), Real(std::pow(H, 6) / 64.0), Real(2 * prm.rho0), 0};
+  }
   const Brush& brush = this->brush_;
   p.brush = {float(brush.center[0]), float(brush.center[1]), float(brush.center[2]), float(brush.radius)};
   p.brush_strength = float(brush.strength);
@@ -155,7 +165,8 @@ void GpuWorld<D>::write_params(double dt, double kick_dt) {
   p.boundary_count = glsl::uint(this->boundary_.size());
   p.obstacle_count = glsl::uint(this->obstacles_.size());
   p.flags = (s.eos == Eos::Linear ? RTSPH_F_LINEAR_EOS : 0u) |
-            (s.clamp_negative_pressure ? RTSPH_F_CLAMP_NEGATIVE : 0u) | (brush.active ? RTSPH_F_BRUSH : 0u);
+            (s.clamp_negative_pressure ? RTSPH_F_CLAMP_NEGATIVE : 0u) | (brush.active ? RTSPH_F_BRUSH : 0u) |
+            (s.surface_tension > 0 || s.adhesion > 0 ? RTSPH_F_SURFACE : 0u);
   glNamedBufferSubData(params_ubo_, 0, sizeof p, &p);
 }
 
@@ -321,6 +332,18 @@ template <int D>
 void GpuWorld<D>::forces() {
   bind_all();
   forces_.dispatch(this->fluid_.size());
+}
+
+// Two passes, as the CPU's: the normals (only with cohesion on), then the pair forces.
+template <int D>
+void GpuWorld<D>::surface_forces() {
+  const auto& s = this->spec_;
+  if (!(s.surface_tension > 0 || s.adhesion > 0)) return;
+  normal_.reserve(capacity_ * sizeof(vec4));
+  bind_all();
+  normal_.bind(RTSPH_B_NORMAL);
+  if (s.surface_tension > 0) surface_normal_.dispatch(this->fluid_.size());  // dispatch() ends in a barrier
+  surface_forces_.dispatch(this->fluid_.size());
 }
 
 template <int D>

@@ -60,6 +60,9 @@ class GpuWorld : public FluidWorld<D> {
   double mean_compression_now();
   void boundary_pressure();                   // Adami 2012's wall pressure
   void forces();                              // the acceleration sum (forces.comp)
+  /// Adds surface tension and adhesion to the accelerations when the scene has them (Akinci
+  /// 2013; FluidWorld::add_surface_forces), after the method's force pass.
+  void surface_forces();
   void kick(double dt);                       // v += a dt
   /// After a step: the host copies are stale until the next read.
   void mark_stale() { host_fresh_ = scalars_fresh_ = boundary_fresh_ = false; }
@@ -88,6 +91,8 @@ class GpuWorld : public FluidWorld<D> {
   std::vector<std::string> defines_;
   std::unique_ptr<CellSorter> sorter_;
   ComputeProgram density_, density_only_, boundary_pressure_, forces_, kick_, kick_drift_, move_boundary_;
+  ComputeProgram surface_normal_, surface_forces_;
+  Buffer normal_;  // surface normals, one vec4 per fluid particle
   ComputeProgram reduce_[5], reduce_final_[5];
   /// Runs reduction `mode` of reduce.comp into stats slot `slot` (two passes, fixed order).
   void reduce(int mode, unsigned slot) const;

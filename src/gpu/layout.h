@@ -66,12 +66,15 @@ struct alignas(32) dvec4 { double x, y, z, w; };
 #define RTSPH_B_POS_NEXT RTSPH_B_GATHER_OUT0  // vec4: positions after a Jacobi correction
 #define RTSPH_B_DELTA RTSPH_B_GATHER_OUT1     // vec4: XSPH and vorticity velocity change
 #define RTSPH_B_OMEGA RTSPH_B_GATHER_OUT2     // vec4: vorticity
+// Surface tension's normals are written and read within one force stage, after the sort.
+#define RTSPH_B_NORMAL RTSPH_B_GATHER_OUT3    // vec4: surface normal n_i (Akinci et al. 2013)
 
 // Flags in SphParams.flags.
 #define RTSPH_F_LINEAR_EOS 1u
 #define RTSPH_F_CLAMP_NEGATIVE 2u
 #define RTSPH_F_BRUSH 4u
 #define RTSPH_F_WALL_HYDROSTATIC 8u
+#define RTSPH_F_SURFACE 16u  // surface tension (gamma > 0) or adhesion (beta > 0) is on
 
 // Everything a step's passes read that is constant over the step (std140 uniform block).
 struct SphParams {
@@ -82,6 +85,8 @@ struct SphParams {
   vec4 wall_lo;         // m, the container's wall planes (drift's contact); along a periodic
   vec4 wall_hi;         //   axis, the period's ends (a particle wraps there instead)
   vec4 period;          // m, xyz: the period along each periodic axis, 0 elsewhere; w: 1 when any
+  vec4 surface;         // Akinci 2013: gamma, beta, cohesion constant, adhesion constant
+  vec4 surface_b;       //   the support H (m), H^6/64 (m^6), 2 rho0 (kg/m^3), unused
   vec4 brush;           // xyz centre (m), w radius (m)
   vec4 kernel_a;        // the kernel's constants, as its CPU object holds them (core/kernels.h)
   vec4 kernel_b;
@@ -106,7 +111,7 @@ struct Obstacle {
 };
 
 #ifdef __cplusplus
-static_assert(sizeof(SphParams) == 288, "SphParams must match its std140 layout");
+static_assert(sizeof(SphParams) == 320, "SphParams must match its std140 layout");
 static_assert(sizeof(Obstacle) == 96, "Obstacle must match its std430 layout");
 }  // namespace rtsph::gpu::glsl
 #endif

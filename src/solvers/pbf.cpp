@@ -239,6 +239,12 @@ void Pbf<D>::apply_position_correction() {
   const Real k_corr = Real(spec_.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30));
   const NeighbourList<D>& list = ctx_.fluid_list;
   const Real* lambda = lambda_.data();
+  // Jacobi: every Δx comes from the same state, the λ pass's (λ and the cached gradients, not the
+  // positions), so each particle can move as soon as its Δx is known. Then collision detection and
+  // response against the container (Algorithm 1, line 14): a correction that would take a
+  // particle through a wall plane stops it on the plane. (The velocity follows from the positions
+  // in update_velocity.)
+  const auto walls = this->wall_planes();
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
       const Real li = lambda[i];
@@ -248,26 +254,13 @@ void Pbf<D>::apply_position_correction() {
         const f8 c = li + simd::at(lambda, j) - k_corr * simd::load(pair_cache_.at(slot, D));
         for (int k = 0; k < D; ++k) acc[k] += c * simd::load(pair_cache_.at(slot, k));
       });
-      for (int k = 0; k < D; ++k)
-        delta_[k][i] = mass_over_rho0 * simd::hsum(acc[k]) + 2.0f * li * inv_rho0 * wall_grad_[k][i];
-    }
-  }, ThreadPool::kPairs);
-  // Jacobi: every Δx comes from the same positions, then all move at once; then collision
-  // detection and response against the container (Algorithm 1, line 14): a correction that
-  // would take a particle through a wall plane stops it on the plane. (The velocity follows
-  // from the positions in update_velocity.)
-  const auto walls = this->wall_planes();
-  pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-    for (int k = 0; k < D; ++k) {
-      Real* x = fluid_.x[k].data();
-      const Real* dx = delta_[k].data();
-      const Real lo = walls.lo[k], hi = walls.hi[k];
-      for (std::size_t i = b; i < e; ++i) {
-        const Real xn = x[i] + dx[i];
-        x[i] = xn < lo ? lo : xn > hi ? hi : xn;
+      for (int k = 0; k < D; ++k) {
+        const Real dx = mass_over_rho0 * simd::hsum(acc[k]) + 2.0f * li * inv_rho0 * wall_grad_[k][i];
+        const Real xn = fluid_.x[k][i] + dx, lo = walls.lo[k], hi = walls.hi[k];
+        fluid_.x[k][i] = xn < lo ? lo : xn > hi ? hi : xn;
       }
     }
-  });
+  }, ThreadPool::kPairs);
 }
 
 // vᵢ = (x*ᵢ − xᵢ)/Δt. The predicted step already moved xᵢ by vᵢΔt, so only the correction the

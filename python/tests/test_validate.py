@@ -4,6 +4,7 @@ import os
 import subprocess
 import sys
 
+import numpy as np
 import pytest
 
 from rtsph import validate
@@ -143,3 +144,14 @@ def test_the_column_height_metric_reads_the_table():
     assert _height_error(tau, H, 0.0) == pytest.approx(0.0, abs=1e-12)
     assert _height_error(tau, [1.1 * h for h in H], 0.0) == pytest.approx(0.1, rel=1e-9)
     assert _height_error(tau, H, 0.2) > 0.02
+
+
+def test_the_spheric_heights_are_in_probe_order():
+    # The water starts beyond x = 1.992 m and runs toward x = 0, so it reaches H3 (1.488 m),
+    # then H2 (0.992 m), then H1 (0.496 m); H4 (2.638 m) starts inside the column, 0.55 m deep.
+    from rtsph.validate.cases import _spheric_data
+    d = _spheric_data()
+    assert d["t"][0] == 0.0 and d["t"][-1] >= 5.9
+    wet = {k: float(d["t"][np.argmax(d[k] > 0.02)]) for k in ("H1", "H2", "H3")}
+    assert wet["H3"] < wet["H2"] < wet["H1"]
+    assert abs(d["H4"][0] - 0.55) < 0.01

@@ -934,9 +934,10 @@ SPHERIC_T_END = 6.0
 
 def _spheric_data():
     path = os.path.join(os.path.dirname(__file__), "data", "spheric_test2_heights.csv")
-    d = np.loadtxt(path, delimiter=",", comments="#", skiprows=0, dtype=str)
-    head = list(d[0])
-    vals = d[1:].astype(float)
+    with open(path) as f:
+        lines = [ln.strip() for ln in f if ln.strip() and not ln.startswith("#")]
+    head = lines[0].split(",")
+    vals = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]])
     return {name: vals[:, head.index(col)] for name, col in
             (("t", "t_s"), ("H1", "H1_m"), ("H2", "H2_m"), ("H3", "H3_m"), ("H4", "H4_m"))}
 

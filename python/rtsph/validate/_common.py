@@ -1,0 +1,66 @@
+"""What every validation case shares: the Result, where the cases run (the backend), and
+the helpers that turn errors into verdicts and orders of convergence."""
+from __future__ import annotations
+
+from dataclasses import dataclass, field
+from typing import Callable, Dict, List, Optional, Tuple
+
+import numpy as np
+
+import rtsph
+
+G = 9.81
+
+# Where the cases run: "cpu" or "gpu" (run_case sets it for the case it runs).
+_BACKEND = "cpu"
+
+
+class NotOnBackend(Exception):
+    """The backend has no model for a scene the case needs (the engine's one-line reason)."""
+
+
+def _simulation(scene, threads: int) -> "rtsph.Simulation":
+    try:
+        return rtsph.Simulation(scene, threads=threads, backend=_BACKEND)
+    except ValueError as e:
+        # The GPU backend refuses what it does not model yet (DFSPH, surface tension, ...) with
+        # one line ending "use --backend cpu": not a failure of the physics, so n/a.
+        if _BACKEND != "cpu" and "use --backend cpu" in str(e):
+            raise NotOnBackend(str(e)) from None
+        raise
+
+
+@dataclass
+class Result:
+    case: str
+    method: str
+    metric: str                 # what the error measures
+    error: float = float("nan")
+    tolerance: float = float("nan")
+    passed: bool = False
+    applicable: bool = True     # False: the method has no model for this case (reason in notes)
+    setup: str = ""
+    reference: str = ""
+    notes: str = ""
+    particles: int = 0
+    wall_s: float = 0.0
+    series: Dict[str, List[float]] = field(default_factory=dict)  # columns of the case's CSV
+    plot: Optional[Callable] = None                                 # plot(ax, result)
+    convergence: List[Tuple[float, float]] = field(default_factory=list)  # (spacing, error)
+    extra: Dict[str, float] = field(default_factory=dict)           # other figures for the summary
+
+
+def _finish(r: Result) -> Result:
+    r.passed = bool(r.applicable and np.isfinite(r.error) and r.error <= r.tolerance)
+    return r
+
+
+def _order(conv: List[Tuple[float, float]]) -> float:
+    """Observed order of convergence: slope of log(error) against log(spacing)."""
+    h = np.log([c[0] for c in conv])
+    e = np.log([max(c[1], 1e-300) for c in conv])
+    return float(np.polyfit(h, e, 1)[0]) if len(conv) >= 2 else float("nan")
+
+
+NO_LAMINAR_VISCOSITY = ("PBF has no laminar viscosity ν (its XSPH term smooths velocities without one), "
+                        "so this viscous case does not apply.")

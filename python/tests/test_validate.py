@@ -43,6 +43,40 @@ def test_a_failing_case_exits_1(tmp_path, monkeypatch):
     assert json.loads((tmp_path / "summary.json").read_text())["passed"] is False
 
 
+def test_known_failures_hold_the_failing_cases_where_they_are(tmp_path, monkeypatch):
+    from rtsph.validate.known import Known, judge
+    known = {("c", "wcsph"): Known(0.2, "why"), ("c", "pbf"): Known(None, "no figure")}
+
+    def res(method, error, passed=False, case="c"):
+        return Result(case=case, method=method, metric="m", error=error, tolerance=0.1, passed=passed)
+    assert judge([res("wcsph", 0.24), res("pbf", float("nan")), res("dfsph", 0.05, True)], known) == []
+    worse = judge([res("wcsph", 0.26)], known)  # above 1.25 × 0.2
+    assert len(worse) == 1 and "got worse" in worse[0]
+    assert "not a known failure" in judge([res("dfsph", 0.2)], known)[0]
+    assert "now passes" in judge([res("wcsph", 0.05, True)], known)[0]
+    assert "did not give a figure" in judge([res("wcsph", float("inf"))], known)[0]
+    assert "did not give a figure" in judge([res("wcsph", float("nan"))], known)[0]
+
+    # Through the command: a failure listed in known.py exits 0 with the flag, 1 without.
+    def failing(method, level, threads):
+        r = Result(case="always_fails", method=method, metric="m", error=1.0, tolerance=0.5)
+        r.series = {"x": [0.0, 1.0]}
+        r.plot = lambda ax, res: ax.plot(res.series["x"], res.series["x"])
+        return r
+    monkeypatch.setitem(validate.CASES, "always_fails", failing)
+    from rtsph.validate import known as known_mod
+    monkeypatch.setitem(known_mod.KNOWN_FAILURES, ("always_fails", "wcsph"), Known(1.0, "a test's failure"))
+    args = ["always_fails", "--method", "wcsph", "--out", str(tmp_path)]
+    assert vmain.main(args) == 1
+    assert vmain.main(args + ["--known-failures"]) == 0
+    row = json.loads((tmp_path / "summary.json").read_text())["cases"][0]
+    assert row["passed"] is False and row["known_failure"] == "a test's failure"
+    assert "(known)" in (tmp_path / "report.html").read_text()
+    assert vmain.main(args + ["--known-failures", "--full"]) == 2
+    monkeypatch.setitem(known_mod.KNOWN_FAILURES, ("always_fails", "wcsph"), Known(0.7, "recorded lower"))
+    assert vmain.main(args + ["--known-failures"]) == 1
+
+
 @pytest.mark.parametrize("args", [["no_such_case"], ["--method", "sph2014"], ["--backend", "cuda"], ["--threads", "-1"],
                                   ["--no-such-flag"]])
 def test_bad_arguments_exit_2(args, tmp_path):

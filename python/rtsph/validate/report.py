@@ -13,6 +13,7 @@ import platform
 from typing import Dict, List
 
 from .cases import Result
+from .known import KNOWN_FAILURES
 
 
 def _plot_case(case: str, results: List[Result]):
@@ -58,6 +59,12 @@ def _fmt(x: float) -> str:
 def write_report(out: str, results: List[Result], level: str, threads: int, wall_s: float,
                  backend: str = "cpu") -> None:
     os.makedirs(out, exist_ok=True)
+
+    def known(r: Result) -> str:
+        """Why a quick CPU failure is a known one (known.py), else ''."""
+        k = KNOWN_FAILURES.get((r.case, r.method)) if level == "quick" and backend == "cpu" else None
+        return k.why if k is not None and r.applicable and not r.passed else ""
+
     by_case: Dict[str, List[Result]] = {}
     for r in results:
         by_case.setdefault(r.case, []).append(r)
@@ -76,7 +83,7 @@ def write_report(out: str, results: List[Result], level: str, threads: int, wall
         {"case": r.case, "method": r.method, "applicable": r.applicable, "passed": r.passed,
          "metric": r.metric, "error": r.error, "tolerance": r.tolerance, "particles": r.particles,
          "wall_s": r.wall_s, "setup": r.setup, "reference": r.reference, "notes": r.notes,
-         "convergence": r.convergence, "extra": r.extra} for r in results]}
+         "convergence": r.convergence, "extra": r.extra, "known_failure": known(r) or None} for r in results]}
     with open(os.path.join(out, "summary.json"), "w") as f:
         json.dump(summary, f, indent=2, default=float)
 
@@ -92,7 +99,7 @@ def write_report(out: str, results: List[Result], level: str, threads: int, wall
                 cells.append("<td class=na>n/a</td>")
             else:
                 cells.append(f"<td class={'pass' if r.passed else 'fail'}>{'pass' if r.passed else 'FAIL'} "
-                             f"{_fmt(r.error)}</td>")
+                             f"{_fmt(r.error)}{' (known)' if known(r) else ''}</td>")
         rows.append(f"<tr><td><a href='#{case}'>{case}</a></td>{''.join(cells)}</tr>")
     sections = []
     for case, rs in by_case.items():
@@ -110,7 +117,8 @@ def write_report(out: str, results: List[Result], level: str, threads: int, wall
                 conv += f" (order {r.extra.get('observed_order', float('nan')):.2f})"
             lines.append(f"<tr><td>{r.method}</td><td class={'pass' if r.passed else 'fail'}>"
                          f"{'pass' if r.passed else 'FAIL'}</td><td>{_fmt(r.error)} (tolerance {_fmt(r.tolerance)})</td>"
-                         f"<td>{r.particles:,}</td><td>{r.wall_s:.1f} s</td><td>{html.escape(r.notes)} {conv}</td></tr>")
+                         f"<td>{r.particles:,}</td><td>{r.wall_s:.1f} s</td><td>{html.escape(r.notes)} {conv}"
+                         f"{'<br>Known failure: ' + html.escape(known(r)) if known(r) else ''}</td></tr>")
         sections.append(
             f"<h2 id='{case}'>{case}</h2><p><b>Set-up:</b> {html.escape(first.setup)}<br>"
             f"<b>Reference:</b> {html.escape(first.reference)}<br><b>Measured:</b> {html.escape(first.metric)}</p>"

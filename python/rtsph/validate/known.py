@@ -1,0 +1,87 @@
+"""The quick level's known failures: what `rtsph validate --quick --known-failures` (the test
+command's run) lets fail, and how far.
+
+Each entry is a case and method that fails its tolerance today, with the error the quick level
+measured (CPU, 2026-11-25) and why it fails (docs/validation.md tells the whole story). With
+--known-failures the run exits 0 only when:
+- every failure is listed here, and its error is at most REGRESSION_MARGIN times the recorded
+  one (a finite one: "did not finish" is never within);
+- every listed entry still fails: one that passes must leave the list, so that it is guarded as
+  a pass from then on.
+So the passing cases are held to their tolerances, the failing ones are held where they are,
+and the report still says FAIL for each. This is not the issue's "validate --quick passes":
+that needs this list empty.
+"""
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Dict, Iterable, List, Optional, Tuple
+
+# A known failure's error may grow by this factor before the run calls it a regression: the
+# quick figures move with round-off where a case amplifies it (docs/validation.md: the 2D static
+# drop moved from 2.0% to 8.8% with a change of summation order alone).
+REGRESSION_MARGIN = 1.25
+
+
+@dataclass(frozen=True)
+class Known:
+    measured: Optional[float]  # the quick error recorded; None where the figure is not a number
+    why: str
+
+    def ceiling(self) -> float:
+        return math.inf if self.measured is None else REGRESSION_MARGIN * self.measured
+
+
+_DAM = "the residual column height drains more slowly than Martin & Moyce's Table 6 after τ ≈ 2 (the front passes)"
+_STILL = "particles near the walls keep moving: more than a spacing of drift after settling"
+_ST3 = "the 3D calibration drop is 5 spacings in radius at the quick level; the prediction at 2·R is off"
+_OSC = "the drop locks into an ellipse (Akinci's cohesion at h = spacing): no liquid oscillation to time"
+_SPH = "0.04 m (quick) is too coarse for 3 cm at every probe; 0.02 m (full) passes"
+
+KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
+    ("hydrostatic_2d", "dfsph"): Known(0.03112, "pressure noise of the density solve, just above 3%"),
+    ("hydrostatic_3d", "pbf"): Known(0.0945, "PBF's equivalent pressure Σλ/Δt² reads 7.9-9.5% off in 3D"),
+    ("dam_break_2d", "wcsph"): Known(0.1203, _DAM),
+    ("dam_break_2d", "pbf"): Known(0.2169, _DAM),
+    ("dam_break_2d", "dfsph"): Known(0.1320, _DAM),
+    ("taylor_green_2d", "dfsph"): Known(0.3588, "DFSPH loses the vortex's amplitude faster than ν does, more with more steps"),
+    ("still_water_3d", "wcsph"): Known(1.201, _STILL),
+    ("still_water_3d", "pbf"): Known(1.742, _STILL),
+    ("still_water_3d", "dfsph"): Known(2.436, _STILL + "; DFSPH jitters against the floor"),
+    ("static_droplet_2d", "pbf"): Known(0.2906, "PBF's s_corr is a pair force its equivalent pressure does not count"),
+    ("static_droplet_3d", "wcsph"): Known(0.4432, _ST3),
+    ("static_droplet_3d", "pbf"): Known(0.6712, _ST3),
+    ("static_droplet_3d", "dfsph"): Known(0.3914, _ST3),
+    ("oscillating_droplet_2d", "wcsph"): Known(4.193, _OSC),
+    ("oscillating_droplet_2d", "pbf"): Known(None, "σ calibrates negative for PBF (see static_droplet_2d), so no period is predicted"),
+    ("oscillating_droplet_2d", "dfsph"): Known(9.449, _OSC),
+    ("spheric_test2_3d", "wcsph"): Known(0.0328, _SPH),
+    ("spheric_test2_3d", "pbf"): Known(0.03584, _SPH),
+    ("spheric_test2_3d", "dfsph"): Known(0.03349, _SPH),
+}
+
+
+def judge(results: Iterable, known: Dict[Tuple[str, str], Known] = KNOWN_FAILURES) -> List[str]:
+    """The problems --known-failures exits 1 for, one line each (empty: the run is as known).
+    results: Result-like objects with case, method, applicable, passed and error."""
+    problems = []
+    for r in results:
+        if not r.applicable:
+            continue
+        k = known.get((r.case, r.method))
+        if r.passed:
+            if k is not None:
+                problems.append(f"{r.case} ({r.method}) now passes: remove it from "
+                                "python/rtsph/validate/known.py, so it is held to its tolerance")
+            continue
+        if k is None:
+            problems.append(f"{r.case} ({r.method}) fails ({r.error:.4g} against {r.tolerance:.4g}) "
+                            "and is not a known failure")
+        elif not (math.isfinite(r.error) or (k.measured is None and math.isnan(r.error))):
+            problems.append(f"{r.case} ({r.method}) did not give a figure ({r.error}): a known failure "
+                            "must still finish")
+        elif r.error > k.ceiling():
+            problems.append(f"{r.case} ({r.method}) got worse: {r.error:.4g} against the recorded "
+                            f"{k.measured:.4g} (at most {REGRESSION_MARGIN}× that)")
+    return problems

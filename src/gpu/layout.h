@@ -54,7 +54,7 @@ struct alignas(32) dvec4 { double x, y, z, w; };
 #define RTSPH_B_GATHER_OUT2 28
 #define RTSPH_B_GATHER_OUT3 29
 #define RTSPH_B_BKEY 30      // uint: cell key of each boundary sample (sorted)
-#define RTSPH_B_STATS 31     // dvec4 results of the reductions (gpu_world.cpp, StatSlot)
+#define RTSPH_B_STATS 31     // dvec4 results of the reductions (gpu_world_detail.h, StatSlot)
 #define RTSPH_BINDINGS 32
 #define RTSPH_U_PARAMS 0     // uniform block binding of SphParams
 // PBF's own arrays borrow the gather bindings (the sort rebinds those before each use; no PBF

@@ -118,30 +118,33 @@ TEST(TransportVelocity, BitwiseIdenticalFor1And2ThreadsAndActs) {
 
 // DFSPH steps with the flow (Δt = 0.005 s here, c0Δt = 2h), so the transport velocity's
 // background pressure ρ0c0², an explicit pressure, would cross two smoothing lengths per step:
-// the vortex blew up at step 5 (density error 54%). It is capped at ρ0(cfl·h/Δt)²; the run now
-// keeps its density and its amplitude decays. What is not right yet (docs/validation.md): the
-// decay itself, far too fast here at 40² (amplitude 0.27 at t = 0.3 s against the exact 0.79;
-// at the validation's 80², 35% fast), and a fifth of the density solves stop at their cap just
-// above the tolerance.
-TEST(TransportVelocity, DfsphStaysStableAtTheFullBackgroundPressure) {
+// the vortex blew up at step 5 (density error 54%). It is capped at ρ0(cfl·h/Δt)².
+// The box is periodic and full, so the density solve targets the kernel sums' mean, not ρ0
+// (Dfsph::correct_density_error): the strained lattice sums up to 1% high on average, which no
+// velocity field can remove. Targeting ρ0 instead, most density solves stopped at their
+// iteration cap (19 of 60 steps) and the amplitude fell to 0.43 by t = 0.3 s (exact 0.79); now
+// 0.73, no solve at its cap. What is left is lost while the lattice first rearranges (t ≈ 0.1-0.2 s).
+TEST(TransportVelocity, DfsphTaylorGreenKeepsItsAmplitude) {
   SimSpec s = taylor_green(40, 1.0);
   s.method = "dfsph";
   auto sim = make_simulation(s, 2);
   set_vortex(*sim);
   const double a0 = amplitude(*sim);
   double worst = 0;
-  int capped = 0;  // steps whose density solve stopped at its iteration cap (printed)
+  int capped = 0;  // steps whose density or divergence solve stopped at its iteration cap
   while (sim->time() < 0.3) {
     sim->step();
     capped += !sim->solver_failure().empty();
     worst = std::max(worst, sim->stats().max_density_error);
   }
-  const double a = amplitude(*sim);
+  const double a = amplitude(*sim), exact = a0 * std::exp(-8 * M_PI * M_PI / 100 * sim->time());
   std::printf("DFSPH Taylor-Green with p_b = rho0 c0^2: %llu steps (%d at the iteration cap), "
-              "amplitude %.4f -> %.4f, worst density error %.3f%%\n",
-              (unsigned long long)sim->step_count(), capped, a0, a, 100 * worst);
+              "amplitude %.4f -> %.4f (exact %.4f), worst density error %.3f%%\n",
+              (unsigned long long)sim->step_count(), capped, a0, a, exact, 100 * worst);
   EXPECT_LT(worst, 0.05);
-  EXPECT_LT(a, a0);
+  EXPECT_EQ(capped, 0);
+  EXPECT_GT(a / exact, 0.9);
+  EXPECT_LT(a / exact, 1.0);  // nothing feeds the vortex
 }
 
 // ṽ − v (the transport_dv.* method fields) travels in checkpoints: a resumed run continues bitwise

@@ -265,8 +265,10 @@ const std::vector<ParamInfo>& parameter_table() {
                                                    .live = true}),
       field<&SimSpec::dfsph_max_iterations>({.key = "solver.dfsph.max_iterations", .min = 1,
                                              .max = 10000, .default_value = 100,
-                                             .help = "Iteration cap of each DFSPH solve; hitting "
-                                                     "it stops the run (instability guard).",
+                                             .help = "Iteration cap of each DFSPH solve: one that "
+                                                     "reaches it ends with the error it has, and "
+                                                     "the instability guard names it if the run "
+                                                     "then goes unstable.",
                                              .live = true}),
       field<&SimSpec::dfsph_chebyshev>({.key = "solver.dfsph.chebyshev", .min = 0, .max = 0.999,
                                         .default_value = 0.95,

@@ -49,6 +49,9 @@ class Dfsph final : public FluidWorld<D> {
   PairCache<D> pair_grad_;  // ∇Wᵢⱼ per listed pair
   std::array<AlignedArray<Real>, D> wall_grad_;
   AlignedArray<Real> wall_rate_;
+  // Fully periodic, two-sided solves: the kernel-sum density's mean over the fluid minus ρ0, which
+  // no velocity field can remove (correct_density_error). 0 otherwise.
+  double density_bias_ = 0;
   double relax_ = 0.5;               // Jacobi ω, set once from the kernel (jacobi_relaxation)
   int density_iterations_ = 0, divergence_iterations_ = 0;
   double density_iteration_sum_ = 0, divergence_iteration_sum_ = 0;

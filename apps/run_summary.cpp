@@ -27,6 +27,7 @@ RunSummary make_summary(const Simulation& sim, long long steps, double wall_s, i
   s.mean_density_error = st.mean_density_error;
   s.mean_pressure_iterations = st.mean_pressure_iterations;
   s.mean_divergence_iterations = st.mean_divergence_iterations;
+  s.capped_steps = st.capped_steps;
   s.particles_put_back = st.particles_put_back;
   s.threads = threads > 0 ? threads : omp_get_max_threads();
   s.bytes = st.bytes;
@@ -51,6 +52,9 @@ void print_summary(const RunSummary& s, std::FILE* out) {
   if (s.mean_pressure_iterations > 0 || s.mean_divergence_iterations > 0)
     fmt::print(out, "solver iterations      {:.2f} pressure, {:.2f} divergence (mean per step)\n",
                s.mean_pressure_iterations, s.mean_divergence_iterations);
+  if (s.capped_steps > 0)
+    fmt::print(out, "solves at their cap    {} of {} steps (the density or divergence error stayed above "
+               "its tolerance; solver.dfsph.max_iterations)\n", s.capped_steps, s.steps);
   if (s.status != "completed") fmt::print(out, "status                 {}\n", s.status);
   if (s.retries > 0) fmt::print(out, "retries (dt halved)    {}\n", s.retries);
   if (!s.checkpoint.empty()) fmt::print(out, "checkpoint             {}\n", s.checkpoint);
@@ -72,6 +76,7 @@ std::string summary_json(const RunSummary& s) {
   j["mean_density_error"] = s.mean_density_error;
   j["mean_pressure_iterations"] = s.mean_pressure_iterations;
   j["mean_divergence_iterations"] = s.mean_divergence_iterations;
+  j["capped_steps"] = s.capped_steps;
   j["particles_put_back"] = s.particles_put_back;
   j["threads"] = s.threads;
   j["bytes"] = s.bytes;

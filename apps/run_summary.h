@@ -18,6 +18,7 @@ struct RunSummary {
   double max_density_error = 0;
   double mean_density_error = 0;  // last step
   double mean_pressure_iterations = 0, mean_divergence_iterations = 0;  // per step, over the run
+  unsigned long long capped_steps = 0;  // DFSPH: steps whose solve stopped at its iteration cap
   unsigned long long particles_put_back = 0;
   int threads = 0;
   std::size_t bytes = 0;

@@ -269,7 +269,28 @@ TEST(Dfsph, HoldsTheDefaultToleranceAtEveryStepIn3D) {
               (unsigned long long)sim->step_count(), sim->time(), 100 * worst, worst_t, max_it,
               sim->stats().mean_pressure_iterations);
   EXPECT_LT(max_it, s.dfsph_max_iterations);
+  EXPECT_EQ(sim->stats().capped_steps, 0u);
   EXPECT_GT(worst, 0.0);  // a real measurement
+}
+
+// A solve that stops at its cap above its tolerance is counted (`rtsph run` prints the count),
+// and the count travels in checkpoints: with a cap of 2 sweeps and a 0.01% tolerance the
+// collapsing column's density solve cannot converge.
+TEST(Dfsph, CountsTheStepsWhoseSolveStoppedAtItsCap) {
+  SimSpec s = with_method(test::dam_break_2d(0.25, 0.0125), "dfsph");
+  s.dfsph_max_iterations = 2;
+  s.dfsph_max_density_error = 1e-4;
+  auto sim = make_simulation(s, 2);
+  std::uint64_t seen = 0;
+  for (int i = 0; i < 20; ++i) {
+    sim->step();
+    seen += !sim->solver_failure().empty();
+  }
+  EXPECT_GT(seen, 0u);
+  EXPECT_EQ(sim->stats().capped_steps, seen);
+  std::vector<StateField> fields = sim->state_fields();
+  EXPECT_TRUE(std::any_of(fields.begin(), fields.end(),
+                          [](const StateField& f) { return f.name == "dfsph.capped_steps"; }));
 }
 
 // The Chebyshev acceleration of the density solve (solver.dfsph.chebyshev) reaches the same

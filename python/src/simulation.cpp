@@ -158,6 +158,7 @@ nb::dict stats_dict(PySimulation& self) {
   d["mean_density_error"] = s.mean_density_error;
   d["mean_pressure_iterations"] = s.mean_pressure_iterations;
   d["mean_divergence_iterations"] = s.mean_divergence_iterations;
+  d["capped_steps"] = s.capped_steps;
   d["particles_put_back"] = s.particles_put_back;
   d["threads"] = s.threads;
   d["bytes"] = s.bytes;

@@ -65,6 +65,7 @@ void Dfsph<D>::step() {
   this->time_ += dt;
   this->dt_ = dt;
   ++this->steps_;
+  capped_steps_ += !failure_.empty();
   density_iteration_sum_ += density_iterations_;
   divergence_iteration_sum_ += divergence_iterations_;
 }
@@ -88,6 +89,7 @@ void Dfsph<D>::add_method_scalars(std::vector<StateField>& f) {
   f.push_back({"dfsph.density_iteration_sum", &density_iteration_sum_, sizeof density_iteration_sum_});
   f.push_back({"dfsph.divergence_iteration_sum", &divergence_iteration_sum_,
                sizeof divergence_iteration_sum_});
+  f.push_back({"dfsph.capped_steps", &capped_steps_, sizeof capped_steps_});
 }
 
 template <int D>
@@ -97,6 +99,7 @@ void Dfsph<D>::add_method_stats(SimStats& s) const {
   const double steps = double(std::max<std::uint64_t>(1, this->steps_));
   s.mean_pressure_iterations = density_iteration_sum_ / steps;
   s.mean_divergence_iterations = divergence_iteration_sum_ / steps;
+  s.capped_steps = capped_steps_;
 }
 
 template class Dfsph<2>;

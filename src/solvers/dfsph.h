@@ -55,6 +55,7 @@ class Dfsph final : public FluidWorld<D> {
   double relax_ = 0.5;               // Jacobi ω, set once from the kernel (jacobi_relaxation)
   int density_iterations_ = 0, divergence_iterations_ = 0;
   double density_iteration_sum_ = 0, divergence_iteration_sum_ = 0;
+  std::uint64_t capped_steps_ = 0;   // steps whose density or divergence solve hit its cap
   std::string failure_;
 };
 

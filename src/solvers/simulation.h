@@ -33,6 +33,9 @@ struct SimStats {
   // PBF's constraint solve or DFSPH's constant-density solve; "divergence" DFSPH's other solve.
   int pressure_iterations = 0, divergence_iterations = 0;
   double mean_pressure_iterations = 0, mean_divergence_iterations = 0;
+  // DFSPH: steps in which a solve stopped at solver.dfsph.max_iterations above its tolerance
+  // (the step goes on with the error it has; solver_failure() names the last one).
+  std::uint64_t capped_steps = 0;
   std::uint64_t particles_put_back = 0; // escaped the domain and were put back inside
   double kinetic_energy_j = 0, potential_energy_j = 0;
   // The gas method's parts of potential_energy_j (which also holds the external potential):

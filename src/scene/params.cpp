@@ -177,7 +177,8 @@ const std::vector<ParamInfo>& parameter_table() {
       field<&SimSpec::time_step_mode>({.key = "solver.time_step.mode", .default_text = "cfl",
                                        .choices = {"cfl", "fixed"},
                                        .help = "cfl: adaptive dt = cfl·h/(c0 + |v|max) (WCSPH) "
-                                               "or cfl·spacing/|v|max (DFSPH), at most max_dt; "
+                                               "or cfl·spacing/max(|v|max, sqrt(|g|H)) (DFSPH, H the fluid's "
+                                               "height), at most max_dt; "
                                                "fixed: always dt. PBF has its own step.",
                                        .live = true}),
       field<&SimSpec::cfl>({.key = "solver.time_step.cfl", .min = 0, .max = 1, .min_exclusive = true,

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "gl_test_context.h"
+#include "gpu_compare.h"
 #include "gpu/backend.h"
 #include "gpu/gl_compute.h"
 #include "io/checkpoint.h"
@@ -22,35 +23,9 @@
 #include "test_scenes.h"
 
 using namespace rtsph;
+using namespace rtsph::test;
 
 namespace {
-
-class GpuBackend : public ::testing::Test {
- protected:
-  void SetUp() override { RTSPH_HEADLESS_CONTEXT_OR_SKIP(ctx_); }
-  void TearDown() override { ctx_.reset(); }
-  std::unique_ptr<render::HeadlessContext> ctx_;
-};
-
-// Values of one per-particle quantity by particle id.
-std::unordered_map<std::uint32_t, std::size_t> index_by_id(const ParticleView& v) {
-  std::unordered_map<std::uint32_t, std::size_t> m;
-  for (std::size_t i = 0; i < v.count; ++i) m[v.id[i]] = i;
-  return m;
-}
-
-double relative_rms_density(const Simulation& a, const Simulation& b) {
-  const ParticleView va = a.fluid(), vb = b.fluid();
-  EXPECT_EQ(va.count, vb.count);
-  const auto ib = index_by_id(vb);
-  double num = 0, den = 0;
-  for (std::size_t i = 0; i < va.count; ++i) {
-    const double ra = va.density[i], rb = vb.density[ib.at(va.id[i])];
-    num += (ra - rb) * (ra - rb);
-    den += ra * ra;
-  }
-  return std::sqrt(num / den);
-}
 
 // The surge front: the largest x of any fluid particle (2D and 3D dam breaks run along x).
 double front(const Simulation& s) {

@@ -49,6 +49,7 @@ void GpuWcsph<D>::update_forces() {
     ScopedTimer timer(this->times_.neighbours_s);
     this->sort_particles();             // stable radix sort by cell (sort.h)
   }
+  this->shift_particles_gpu(this->dt_);  // optional (solver.shifting), the last step's Δt
   {
     ScopedTimer timer(this->times_.density_s);
     this->density_and_pressure();       // Akinci 2012 eq. 6; Tait or linear EOS

@@ -92,6 +92,8 @@ void GpuWorld<D>::compile_programs() {
   forces_ = ComputeProgram("forces.comp", defines_);
   surface_normal_ = ComputeProgram("surface_normal.comp", defines_);
   surface_forces_ = ComputeProgram("surface_forces.comp", defines_);
+  shift_ = ComputeProgram("shift.comp", defines_);
+  shift_apply_ = ComputeProgram("shift_apply.comp", defines_);
   kick_ = ComputeProgram("kick.comp", defines_);
   kick_drift_ = ComputeProgram("kick_drift.comp", defines_);
   move_boundary_ = ComputeProgram("move_boundary.comp", defines_);
@@ -300,7 +302,15 @@ void GpuWorld<D>::sort_particles() {
   bind_all();  // keys.comp reads the grid from the parameter block
   const std::size_t n = this->fluid_.size();
   sorter_->sort(pos_, n, this->ctx_.fluid_grid.cell_count(), fluid_cells_);
-  sorter_->gather(fluid_cells_.order, n, {&pos_, &vel_}, {&pos_alt_, &vel_alt_}, &id_, &id_alt_);
+  if (this->spec_.shifting > 0) {
+    // Shifting reads the neighbours' ρ before the density pass: carry the last step's along, as
+    // the CPU's sort does.
+    dens_alt_.reserve(capacity_ * sizeof(vec4));
+    sorter_->gather(fluid_cells_.order, n, {&pos_, &vel_, &dens_}, {&pos_alt_, &vel_alt_, &dens_alt_}, &id_, &id_alt_);
+    dens_.swap(dens_alt_);
+  } else {
+    sorter_->gather(fluid_cells_.order, n, {&pos_, &vel_}, {&pos_alt_, &vel_alt_}, &id_, &id_alt_);
+  }
   pos_.swap(pos_alt_);
   vel_.swap(vel_alt_);
   id_.swap(id_alt_);
@@ -341,6 +351,19 @@ void GpuWorld<D>::surface_forces() {
   normal_.bind(RTSPH_B_NORMAL);
   if (s.surface_tension > 0) surface_normal_.dispatch(this->fluid_.size());  // dispatch() ends in a barrier
   surface_forces_.dispatch(this->fluid_.size());
+}
+
+// Two passes, as the CPU's: every particle gathers its shift, then all move.
+template <int D>
+void GpuWorld<D>::shift_particles_gpu(double dt) {
+  const auto& s = this->spec_;
+  if (s.shifting <= 0 || dt <= 0 || this->fluid_.size() == 0) return;
+  shift_delta_.reserve(capacity_ * sizeof(vec4));
+  bind_all();
+  shift_delta_.bind(RTSPH_B_DELTA);
+  shift_.set("coeff", Real(s.shifting * this->prm_.h * dt));
+  shift_.dispatch(this->fluid_.size());  // dispatch() ends in a barrier
+  shift_apply_.dispatch(this->fluid_.size());
 }
 
 template <int D>

@@ -63,6 +63,9 @@ class GpuWorld : public FluidWorld<D> {
   /// Adds surface tension and adhesion to the accelerations when the scene has them (Akinci
   /// 2013; FluidWorld::add_surface_forces), after the method's force pass.
   void surface_forces();
+  /// Particle shifting when solver.shifting > 0 (FluidWorld::shift_particles): right after the
+  /// sort, with the last step's Δt, as the CPU's WCSPH.
+  void shift_particles_gpu(double dt);
   void kick(double dt);                       // v += a dt
   /// After a step: the host copies are stale until the next read.
   void mark_stale() { host_fresh_ = scalars_fresh_ = boundary_fresh_ = false; }
@@ -74,6 +77,7 @@ class GpuWorld : public FluidWorld<D> {
 
   // Particle buffers (layout.h's bindings); *_alt are the sort's gather targets.
   Buffer pos_, vel_, acc_, dens_, id_, pos_alt_, vel_alt_, id_alt_;
+  Buffer dens_alt_;  // the sort carries the densities along only for shifting (its ρⱼ)
   Buffer put_back_counter_;
 
  private:
@@ -93,6 +97,8 @@ class GpuWorld : public FluidWorld<D> {
   ComputeProgram density_, density_only_, boundary_pressure_, forces_, kick_, kick_drift_, move_boundary_;
   ComputeProgram surface_normal_, surface_forces_;
   Buffer normal_;  // surface normals, one vec4 per fluid particle
+  ComputeProgram shift_, shift_apply_;
+  Buffer shift_delta_;  // shifting's δx, one vec4 per fluid particle
   ComputeProgram reduce_[5], reduce_final_[5];
   /// Runs reduction `mode` of reduce.comp into stats slot `slot` (two passes, fixed order).
   void reduce(int mode, unsigned slot) const;

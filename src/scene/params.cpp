@@ -157,7 +157,7 @@ const std::vector<ParamInfo>& parameter_table() {
       field<&SimSpec::shifting>({.key = "solver.shifting", .min = 0, .max = 10, .default_value = 0,
                                  .help = "Particle shifting (Lind et al. 2012): each step moves particles "
                                          "by -A h |v| dt grad C (Skillen et al. 2013) to keep their "
-                                         "arrangement uniform; 0 = off. WCSPH and DFSPH. No free-surface "
+                                         "arrangement uniform; 0 = off. WCSPH (both backends) and DFSPH. No free-surface "
                                          "treatment yet: for confined or periodic flows (Taylor-Green).",
                                  .live = true}),
       field<&SimSpec::hydrostatic_start>({.key = "fluid.hydrostatic_start", .default_value = 0,

@@ -343,6 +343,17 @@ void FluidWorld<D>::sort_fluid_by_cell() {
   const uint32_t* order = ctx_.fluid_grid.order();
   fluid_.permute_kinematics(order, ctx_.spare, pool_);
   const std::size_t n = fluid_.size();
+  // Particle shifting reads the neighbours' ρ between the sort and the next density sum
+  // (shift_particles): carry the last step's along. (Unsorted, each particle read another's.)
+  if (spec_.shifting > 0) {
+    ctx_.tmp.resize(n);
+    const Real* src = fluid_.rho.data();
+    Real* dst = ctx_.tmp.data();
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) dst[i] = src[order[i]];
+    });
+    fluid_.rho.swap(ctx_.tmp);
+  }
   for (auto& f : method_fields_) {
     if (!f.sorted) continue;
     ctx_.tmp.resize(n);

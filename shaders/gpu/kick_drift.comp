@@ -5,12 +5,23 @@
 //   wraps to the other end. Then the safety net: a
 //   non-finite position is put back a quarter spacing inside and counted (a diagnostic).
 BUFFER_POS BUFFER_VEL BUFFER_ACC
+#ifdef TRANSPORT
+BUFFER_TDV
+#endif
 layout(std430, binding = RTSPH_B_REDUCE) buffer Counter { uint put_back_count; };
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= P.fluid_count) return;
   vec3 v = vel[i].xyz + acc[i].xyz * P.kick_dt;
   vec3 x = pos[i].xyz;
+#ifdef TRANSPORT
+  // The transport velocity's displacement dt (v~ - v) first, wrapped and held inside the walls
+  // as the CPU's displace_fluid does, then the drift.
+  x += tdv[i].xyz * P.dt;
+  for (int k = 0; k < DIM; ++k)
+    if (P.period[k] > 0.0) x[k] = wrap_periodic(x[k], k);
+  x = clamp_to_walls(x);
+#endif
   for (int k = 0; k < DIM; ++k) {
     if (P.period[k] > 0.0) {  // no walls: wrap (FluidWorld::drift)
       x[k] = wrap_periodic(x[k] + v[k] * P.dt, k);

@@ -17,9 +17,6 @@ std::string gpu_cannot_run(const SimSpec& spec) {
   if (!gpu_supports_method(spec.method))
     return fmt::format("scene '{}': solver.method = \"{}\": the GPU backend runs \"wcsph\" and \"pbf\" so far; use --backend cpu",
                        spec.name, spec.method);
-  if (spec.transport_velocity > 0)
-    return fmt::format("scene '{}': solver.transport_velocity: the GPU backend does not have it yet; use "
-                       "--backend cpu", spec.name);
   return {};
 }
 

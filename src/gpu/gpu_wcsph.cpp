@@ -29,6 +29,7 @@ void GpuWcsph<D>::step() {
   {
     ScopedTimer timer(this->times_.integrate_s);
     this->write_params(dt, 0.5 * dt);
+    this->transport_velocity_gpu(0.5 * dt);              // optional: ṽ − v (Adami 2013)
     this->kick_drift();                                  // v(t+dt/2), x(t+dt), walls, put-back
     this->advance_scene_gpu(this->time_ + dt, dt);       // obstacles, emitters
   }
@@ -59,6 +60,7 @@ void GpuWcsph<D>::update_forces() {
   ScopedTimer timer(this->times_.forces_s);
   this->forces();                       // pressure, viscosity, gravity, brush
   this->surface_forces();               // optional: Akinci 2013 cohesion, curvature, adhesion
+  this->transport_stress_gpu();         // optional: Adami 2013's momentum correction
 }
 
 template class GpuWcsph<2>;

@@ -94,6 +94,13 @@ void GpuWorld<D>::compile_programs() {
   surface_forces_ = ComputeProgram("surface_forces.comp", defines_);
   shift_ = ComputeProgram("shift.comp", defines_);
   shift_apply_ = ComputeProgram("shift_apply.comp", defines_);
+  transport_ = ComputeProgram("transport.comp", defines_);
+  transport_stress_ = ComputeProgram("transport_stress.comp", defines_);
+  {
+    auto d = defines_;
+    d.push_back("TRANSPORT 1");
+    kick_drift_transport_ = ComputeProgram("kick_drift.comp", d);
+  }
   kick_ = ComputeProgram("kick.comp", defines_);
   kick_drift_ = ComputeProgram("kick_drift.comp", defines_);
   move_boundary_ = ComputeProgram("move_boundary.comp", defines_);
@@ -224,6 +231,17 @@ void GpuWorld<D>::upload_fluid(std::size_t first, std::size_t count) {
   acc_.upload(a.data(), count * sizeof(vec4), first * sizeof(vec4));
   dens_.upload(d.data(), count * sizeof(vec4), first * sizeof(vec4));
   id_.upload(f.id.data() + first, count * 4, first * 4);
+  if (transport()) {  // the host's ṽ − v: zero for new particles, a checkpoint's when loading
+    tdv_.reserve(capacity_ * sizeof(vec4));
+    std::vector<vec4> t(count, vec4{0, 0, 0, 0});
+    for (std::size_t i = 0; i < count; ++i) {
+      float ts[3] = {0, 0, 0};
+      for (int k = 0; k < D; ++k)
+        if (first + i < this->transport_dv_[k].size()) ts[k] = this->transport_dv_[k][first + i];
+      t[i] = {ts[0], ts[1], ts[2], 0};
+    }
+    tdv_.upload(t.data(), count * sizeof(vec4), first * sizeof(vec4));
+  }
 }
 
 template <int D>
@@ -314,6 +332,11 @@ void GpuWorld<D>::sort_particles() {
   pos_.swap(pos_alt_);
   vel_.swap(vel_alt_);
   id_.swap(id_alt_);
+  if (transport()) {  // ṽ − v travels with its particle to the force stage (transport_stress_gpu)
+    tdv_alt_.reserve(capacity_ * sizeof(vec4));
+    sorter_->gather(fluid_cells_.order, n, {&tdv_}, {&tdv_alt_});
+    tdv_.swap(tdv_alt_);
+  }
   if (this->boundary_moving_) sort_boundary();
 }
 
@@ -377,7 +400,34 @@ template <int D>
 void GpuWorld<D>::kick_drift() {
   bind_all();
   put_back_counter_.bind(RTSPH_B_REDUCE);
-  kick_drift_.dispatch(this->fluid_.size());
+  if (transport()) {
+    tdv_.bind(RTSPH_B_TDV);
+    kick_drift_transport_.dispatch(this->fluid_.size());
+  } else {
+    kick_drift_.dispatch(this->fluid_.size());
+  }
+}
+
+// p_b = solver.transport_velocity ρ0 c0² (FluidWorld::transport_velocity_shift, whose signal
+// speed cap only DFSPH sets).
+template <int D>
+void GpuWorld<D>::transport_velocity_gpu(double dt_kick) {
+  if (!transport() || dt_kick <= 0 || this->fluid_.size() == 0) return;
+  tdv_.reserve(capacity_ * sizeof(vec4));
+  bind_all();
+  tdv_.bind(RTSPH_B_TDV);
+  const double pb = this->spec_.transport_velocity * this->prm_.rho0 * this->prm_.c0 * this->prm_.c0;
+  transport_.set("coeff", Real(pb * dt_kick));
+  transport_.dispatch(this->fluid_.size());
+}
+
+template <int D>
+void GpuWorld<D>::transport_stress_gpu() {
+  if (!transport() || this->fluid_.size() == 0) return;
+  tdv_.reserve(capacity_ * sizeof(vec4));
+  bind_all();
+  tdv_.bind(RTSPH_B_TDV);
+  transport_stress_.dispatch(this->fluid_.size());
 }
 
 template <int D>

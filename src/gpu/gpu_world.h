@@ -66,6 +66,12 @@ class GpuWorld : public FluidWorld<D> {
   /// Particle shifting when solver.shifting > 0 (FluidWorld::shift_particles): right after the
   /// sort, with the last step's Δt, as the CPU's WCSPH.
   void shift_particles_gpu(double dt);
+  /// The transport-velocity formulation when solver.transport_velocity > 0 (Adami et al. 2013,
+  /// FluidWorld::transport_velocity_shift): ṽ − v from the positions and densities of the last
+  /// force stage, before kick_drift(), which then moves each particle by Δt_drift(ṽ − v) first.
+  void transport_velocity_gpu(double dt_kick);
+  /// Its momentum correction (FluidWorld::add_transport_velocity_stress), after the force stage.
+  void transport_stress_gpu();
   void kick(double dt);                       // v += a dt
   /// After a step: the host copies are stale until the next read.
   void mark_stale() { host_fresh_ = scalars_fresh_ = boundary_fresh_ = false; }
@@ -98,6 +104,9 @@ class GpuWorld : public FluidWorld<D> {
   ComputeProgram surface_normal_, surface_forces_;
   Buffer normal_;  // surface normals, one vec4 per fluid particle
   ComputeProgram shift_, shift_apply_;
+  ComputeProgram transport_, transport_stress_, kick_drift_transport_;
+  Buffer tdv_, tdv_alt_;  // ṽ − v per fluid particle, in the particles' order (sorted with them)
+  bool transport() const { return this->spec_.transport_velocity > 0 && this->spec_.method == "wcsph"; }
   Buffer shift_delta_;  // shifting's δx, one vec4 per fluid particle
   ComputeProgram reduce_[5], reduce_final_[5];
   /// Runs reduction `mode` of reduce.comp into stats slot `slot` (two passes, fixed order).

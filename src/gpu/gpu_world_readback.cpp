@@ -142,6 +142,15 @@ void GpuWorld<D>::sync_host() const {
     f.rho[i] = d[i].x;
     f.p[i] = d[i].y;
   }
+  if (transport()) {  // ṽ − v, a saved method field
+    std::vector<vec4> t(n);
+    tdv_.download(t.data(), n * sizeof(vec4));
+    for (int k = 0; k < D; ++k) self->transport_dv_[k].resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      const float ts[3] = {t[i].x, t[i].y, t[i].z};
+      for (int k = 0; k < D; ++k) self->transport_dv_[k][i] = ts[k];
+    }
+  }
   sync_boundary_host();
   host_fresh_ = true;
 }

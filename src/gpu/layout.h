@@ -68,6 +68,9 @@ struct alignas(32) dvec4 { double x, y, z, w; };
 #define RTSPH_B_OMEGA RTSPH_B_GATHER_OUT2     // vec4: vorticity
 // Surface tension's normals are written and read within one force stage, after the sort.
 #define RTSPH_B_NORMAL RTSPH_B_GATHER_OUT3    // vec4: surface normal n_i (Akinci et al. 2013)
+// WCSPH's transport velocity: written before the drift, carried through the sort by a gather of
+// its own, read by the force stage; PBF (the only user of OMEGA) never runs it.
+#define RTSPH_B_TDV RTSPH_B_GATHER_OUT2       // vec4: v~ - v of the transport velocity (m/s)
 
 // Flags in SphParams.flags.
 #define RTSPH_F_LINEAR_EOS 1u

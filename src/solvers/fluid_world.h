@@ -298,6 +298,9 @@ class FluidWorld : public Simulation {
   std::uint32_t next_id_ = 0;
   double density_error_ = 0, max_density_error_ = 0, mean_density_error_ = 0;
   bool boundary_moving_ = false;
+  // ṽ − v of the last transport_velocity_shift (m/s); a method field when the parameter is on.
+  // (The GPU backend keeps it in a buffer and copies it here for checkpoints.)
+  AlignedArray<Real> transport_dv_[D];
 
  private:
   void resolve_parameters();
@@ -328,7 +331,6 @@ class FluidWorld : public Simulation {
 
   std::vector<MethodField> method_fields_;
   bool keep_lists_ = false;
-  AlignedArray<Real> transport_dv_[D];  // ṽ − v of the last transport_velocity_shift (m/s)
 };
 
 }  // namespace rtsph

@@ -89,6 +89,24 @@ SimSpec channel(double transport_velocity) {
   return s;
 }
 
+// Runs `on` on both backends and `off` (the stage switched off) on the CPU for `steps` steps,
+// from the vortex's velocities in 2D: how far the GPU's particles are from the CPU's (diff), and
+// how far the stage moved the CPU's (effect), seen across periodic seams.
+struct Comparison {
+  double diff, effect, ke_gpu, ke_cpu;
+  std::size_t particles;
+};
+Comparison against_the_cpu(const SimSpec& on, const SimSpec& off, const double* period, int steps) {
+  auto cpu = make_simulation(on, 1);
+  auto gpu = gpu::make_gpu_simulation(on, 1);
+  auto without = make_simulation(off, 1);
+  if (on.dimension == 2) { set_vortex(*cpu); set_vortex(*gpu); set_vortex(*without); }
+  for (int s = 0; s < steps; ++s) { cpu->step(); gpu->step(); without->step(); }
+  EXPECT_EQ(gpu->stats().particles_put_back, 0u);
+  return {worst_position_difference(*gpu, *cpu, period), worst_position_difference(*without, *cpu, period),
+          gpu->stats().kinetic_energy_j, cpu->stats().kinetic_energy_j, cpu->stats().fluid_particles};
+}
+
 }  // namespace
 
 TEST_F(GpuBackend, ShiftingAsOnTheCpu) {
@@ -96,20 +114,12 @@ TEST_F(GpuBackend, ShiftingAsOnTheCpu) {
   const Case cases[] = {{vortex(2.0), vortex(0.0), {1, 1, 0}, 30}, {tank(1.0), tank(0.0), {0, 0, 0}, 30}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.on.name);
-    auto cpu = make_simulation(c.on, 1);
-    auto gpu = gpu::make_gpu_simulation(c.on, 1);
-    auto unshifted = make_simulation(c.off, 1);
-    if (c.on.dimension == 2) { set_vortex(*cpu); set_vortex(*gpu); set_vortex(*unshifted); }
-    for (int s = 0; s < c.steps; ++s) { cpu->step(); gpu->step(); unshifted->step(); }
-    const double diff = worst_position_difference(*gpu, *cpu, c.period);
-    const double effect = worst_position_difference(*unshifted, *cpu, c.period);
+    const Comparison r = against_the_cpu(c.on, c.off, c.period, c.steps);
     std::printf("%s: %zu particles, %d steps: worst GPU - CPU position %.3g m; shifting moved a particle "
-                "%.3g m against the unshifted run\n", c.on.name.c_str(), cpu->stats().fluid_particles, c.steps,
-                diff, effect);
-    EXPECT_GT(effect, 0.01 * c.on.spacing);  // the stage acts
-    EXPECT_LT(diff, 0.1 * effect);            // and the GPU's is the CPU's
-    EXPECT_LT(diff, 2e-5 * c.on.spacing);  // round-off (a CPU that read unsorted ρⱼ: 4e-4)
-    EXPECT_EQ(gpu->stats().particles_put_back, 0u);
+                "%.3g m against the unshifted run\n", c.on.name.c_str(), r.particles, c.steps, r.diff, r.effect);
+    EXPECT_GT(r.effect, 0.01 * c.on.spacing);  // the stage acts
+    EXPECT_LT(r.diff, 0.1 * r.effect);          // and the GPU's is the CPU's
+    EXPECT_LT(r.diff, 2e-5 * c.on.spacing);     // round-off (a CPU that read unsorted ρⱼ: 4e-4)
   }
 }
 
@@ -123,24 +133,16 @@ TEST_F(GpuBackend, TransportVelocityAsOnTheCpu) {
                         {channel(1.0), channel(0.0), {0.2, 0, 0.2}, 30}};
   for (const Case& c : cases) {
     SCOPED_TRACE(c.on.name);
-    auto cpu = make_simulation(c.on, 1);
-    auto gpu = gpu::make_gpu_simulation(c.on, 1);
-    auto plain = make_simulation(c.off, 1);
-    if (c.on.dimension == 2) { set_vortex(*cpu); set_vortex(*gpu); set_vortex(*plain); }
-    for (int s = 0; s < c.steps; ++s) { cpu->step(); gpu->step(); plain->step(); }
-    const double diff = worst_position_difference(*gpu, *cpu, c.period);
-    const double effect = worst_position_difference(*plain, *cpu, c.period);
-    const double ke_gpu = gpu->stats().kinetic_energy_j, ke_cpu = cpu->stats().kinetic_energy_j;
+    const Comparison r = against_the_cpu(c.on, c.off, c.period, c.steps);
     std::printf("%s with the transport velocity: %d steps: worst GPU - CPU position %.3g m (the stage "
                 "moved a particle %.3g m); kinetic energy %.6g / %.6g J (GPU / CPU)\n", c.on.name.c_str(),
-                c.steps, diff, effect, ke_gpu, ke_cpu);
+                c.steps, r.diff, r.effect, r.ke_gpu, r.ke_cpu);
     // The stage acts (in the channel, near the walls only: the stream is uniform), and the GPU's
     // is the CPU's to round-off.
-    EXPECT_GT(effect, 1e-3 * c.on.spacing);
-    EXPECT_LT(diff, 0.01 * effect);
-    EXPECT_LT(diff, 2e-5 * c.on.spacing);
-    EXPECT_NEAR(ke_gpu, ke_cpu, 1e-5 * ke_cpu);
-    EXPECT_EQ(gpu->stats().particles_put_back, 0u);
+    EXPECT_GT(r.effect, 1e-3 * c.on.spacing);
+    EXPECT_LT(r.diff, 0.01 * r.effect);
+    EXPECT_LT(r.diff, 2e-5 * c.on.spacing);
+    EXPECT_NEAR(r.ke_gpu, r.ke_cpu, 1e-5 * r.ke_cpu);
   }
 }
 

@@ -32,13 +32,16 @@ def test_passing_cases_write_the_report(tmp_path):
     assert "pass" in r.stderr  # a progress line per case
 
 
+def _always_fails(method, level, threads):
+    """A case that fails its tolerance, with a series to plot."""
+    r = Result(case="always_fails", method=method, metric="m", error=1.0, tolerance=0.5)
+    r.series = {"x": [0.0, 1.0]}
+    r.plot = lambda ax, res: ax.plot(res.series["x"], res.series["x"])
+    return r
+
+
 def test_a_failing_case_exits_1(tmp_path, monkeypatch):
-    def failing(method, level, threads):
-        r = Result(case="always_fails", method=method, metric="m", error=1.0, tolerance=0.5)
-        r.series = {"x": [0.0, 1.0]}
-        r.plot = lambda ax, res: ax.plot(res.series["x"], res.series["x"])
-        return r
-    monkeypatch.setitem(validate.CASES, "always_fails", failing)
+    monkeypatch.setitem(validate.CASES, "always_fails", _always_fails)
     assert vmain.main(["always_fails", "--method", "wcsph", "--out", str(tmp_path)]) == 1
     assert json.loads((tmp_path / "summary.json").read_text())["passed"] is False
 
@@ -58,12 +61,7 @@ def test_known_failures_hold_the_failing_cases_where_they_are(tmp_path, monkeypa
     assert "did not give a figure" in judge([res("wcsph", float("nan"))], known)[0]
 
     # Through the command: a failure listed in known.py exits 0 with the flag, 1 without.
-    def failing(method, level, threads):
-        r = Result(case="always_fails", method=method, metric="m", error=1.0, tolerance=0.5)
-        r.series = {"x": [0.0, 1.0]}
-        r.plot = lambda ax, res: ax.plot(res.series["x"], res.series["x"])
-        return r
-    monkeypatch.setitem(validate.CASES, "always_fails", failing)
+    monkeypatch.setitem(validate.CASES, "always_fails", _always_fails)
     from rtsph.validate import known as known_mod
     monkeypatch.setitem(known_mod.KNOWN_FAILURES, ("always_fails", "wcsph"), Known(1.0, "a test's failure"))
     args = ["always_fails", "--method", "wcsph", "--out", str(tmp_path)]

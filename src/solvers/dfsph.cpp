@@ -13,7 +13,7 @@ template <int D>
 Dfsph<D>::Dfsph(const SimSpec& spec, int threads) : W(spec, threads) {
   // Several sums per step over one neighbourhood: walk lists, not the grid.
   this->keep_neighbour_lists();
-  relax_ = jacobi_relaxation();
+  relax_ = dfsph::jacobi_relaxation<D>(spec_, prm_);
   // Derived after each neighbour update (saved, so a resumed step needs no recompute).
   this->add_method_field({"factor", &factor_, false, true});
   this->add_method_field({"neighbours", &neighbours_, false, true});
@@ -57,9 +57,8 @@ void Dfsph<D>::step() {
   this->shift_particles(dt);                                      // optional shifting
   {
     ScopedTimer timer(times_.density_s);
-    this->compute_density();                                      //                  (line 10)
+    compute_factors(true);                                        // ρᵢ, αᵢ     (lines 10-11)
     this->measure_density_error();
-    compute_factors();                                            // αᵢ               (line 11)
   }
   correct_divergence_error(dt);                                   // Algorithm 2      (line 12)
   this->time_ += dt;
@@ -86,6 +85,16 @@ void Dfsph<D>::step() {
 // within one step, so its pressure grows as 1/Δt² and a bound on it shrinks the step without
 // end (Taylor–Green went to Δt = 1e-20 s). √(|g|H) is also the speed of the column's gravity
 // waves.
+double dfsph::time_step(const SimSpec& s, const ResolvedParams& prm, double v2max, double a2max,
+                        double head, double viscous_limit) {
+  if (s.time_step_mode == TimeStepMode::Fixed) return s.dt;
+  const double speed = std::max(std::sqrt(v2max), std::sqrt(head));
+  double dt = s.max_dt;
+  if (speed > 0) dt = std::min(dt, s.cfl * s.spacing / speed);
+  if (a2max > 0) dt = std::min(dt, 0.25 * std::sqrt(prm.h / std::sqrt(a2max)));
+  return std::min(dt, viscous_limit);
+}
+
 template <int D>
 double Dfsph<D>::choose_time_step() const {
   if (spec_.time_step_mode == TimeStepMode::Fixed) return spec_.dt;
@@ -110,11 +119,7 @@ double Dfsph<D>::choose_time_step() const {
     });
     head = r.hi - r.lo;
   }
-  const double speed = std::max(std::sqrt(m.v2), std::sqrt(head));
-  double dt = spec_.max_dt;
-  if (speed > 0) dt = std::min(dt, spec_.cfl * spec_.spacing / speed);
-  if (m.a2 > 0) dt = std::min(dt, 0.25 * std::sqrt(prm_.h / std::sqrt(m.a2)));
-  return std::min(dt, this->viscous_dt_limit());
+  return dfsph::time_step(spec_, prm_, m.v2, m.a2, head, this->viscous_dt_limit());
 }
 
 template <int D>

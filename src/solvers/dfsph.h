@@ -8,6 +8,27 @@
 
 namespace rtsph {
 
+// What the CPU and GPU backends' DFSPH share (the reasons are at the definitions in
+// dfsph.cpp and dfsph_solve.cpp).
+namespace dfsph {
+/// Share of the last step's pressure the warm start applies.
+inline constexpr double kWarm = 0.5;
+/// The divergence solve leaves particles with fewer neighbours (fluid + boundary, itself
+/// included) alone: free surface and spray (2017, §4.2).
+template <int D>
+inline constexpr float kMinNeighbours = D == 3 ? 20.0f : 7.0f;
+/// The Jacobi sweeps' relaxation ω for the scene's kernel, from the rest lattice.
+template <int D>
+double jacobi_relaxation(const SimSpec& s, const ResolvedParams& prm);
+/// The Chebyshev weight of sweep `it` (0-based) of a clamped density solve with spectral radius
+/// rho, from the previous sweep's `omega` (1 before the third sweep and for rho = 0).
+double chebyshev_weight(int it, double rho, double omega);
+/// Δt = cfl·d/max(|v|max, √head), head = |g| times the fluid's extent along gravity, also bounded
+/// by the force and viscous limits and max_dt; the fixed step in fixed mode.
+double time_step(const SimSpec& s, const ResolvedParams& prm, double v2max, double a2max,
+                 double head, double viscous_limit);
+}  // namespace dfsph
+
 template <int D>
 class Dfsph final : public FluidWorld<D> {
  public:
@@ -21,8 +42,9 @@ class Dfsph final : public FluidWorld<D> {
   using W::spec_, W::pool_, W::prm_, W::fluid_, W::boundary_, W::ctx_, W::times_;
 
   double choose_time_step() const;
-  void compute_factors();                  // αᵢ and neighbour counts (2017, eq. 8); caches
-  double jacobi_relaxation() const;        // ω for the sweeps, from the rest lattice (dfsph_solve.cpp)
+  /// αᵢ and neighbour counts (2017, eq. 8) and the sweeps' caches; with_density also sums ρᵢ
+  /// (compute_density's sum, in the same order, so the same bits) in the same walk.
+  void compute_factors(bool with_density = false);
   double correct_density_error(double dt);       // Algorithm 3
   double correct_divergence_error(double dt);    // Algorithm 2
   /// Warm start from `total` (last step's pressure), then projected Jacobi sweeps until the

@@ -9,6 +9,7 @@
 // (warm start, section 4.3) and stops when the mean residual reaches its tolerance.
 #include <algorithm>
 #include <array>
+#include <type_traits>
 #include <vector>
 #include <cmath>
 #include <cstdio>
@@ -28,10 +29,11 @@ constexpr double kRelax = 0.5;
 // The share of the Jacobi stability limit 2/λmax used by the relaxation: the stiffest mode of
 // the rest lattice then changes by a factor |1 − ωλmax| ≤ 0.5 per sweep.
 constexpr double kStableShare = 0.75;
-// Share of the last step's pressure the warm start applies. At 1 it pumps energy into a tank at
-// rest (measured, 2D tank: kinetic energy 5.8 J at 0.9 against 0.065 J at 0.5, bottom pressure
-// 1.72 against 1.03 of ρ0gH); at 0 the first sweeps start from nothing (1.06 of ρ0gH).
-constexpr double kWarm = 0.5;
+// dfsph::kWarm, the share of the last step's pressure the warm start applies: at 1 it pumps
+// energy into a tank at rest (measured, 2D tank: kinetic energy 5.8 J at 0.9 against 0.065 J at
+// 0.5, bottom pressure 1.72 against 1.03 of ρ0gH); at 0 the first sweeps start from nothing
+// (1.06 of ρ0gH).
+using dfsph::kWarm;
 }  // namespace
 
 using simd::f8;
@@ -48,12 +50,12 @@ using simd::i8;
 // periodic box, velocity noise ×4 per step). ω = min(0.5, kStableShare · 2/λmax); λmax from a
 // scan of q over [0, π/s]^D.
 template <int D>
-double Dfsph<D>::jacobi_relaxation() const {
-  const double s = spec_.spacing, support2 = prm_.support * prm_.support;
-  const int reach = int(std::ceil(prm_.support / s));
+double dfsph::jacobi_relaxation(const SimSpec& spec, const ResolvedParams& prm) {
+  const double s = spec.spacing, support2 = prm.support * prm.support;
+  const int reach = int(std::ceil(prm.support / s));
   std::vector<std::array<double, D>> offsets, grads;
   double diag = 0;
-  with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+  with_kernel<D>(spec.kernel, prm.h, [&](const auto& K) {
     for (int z = (D == 3 ? -reach : 0); z <= (D == 3 ? reach : 0); ++z)
       for (int y = -reach; y <= reach; ++y)
         for (int x = -reach; x <= reach; ++x) {
@@ -91,8 +93,10 @@ double Dfsph<D>::jacobi_relaxation() const {
   return lmax > 0 ? std::min(kRelax, kStableShare * 2.0 / lmax) : kRelax;
 }
 
+// With with_density, ρᵢ = Σⱼ mWᵢⱼ + Σ_b Ψ_b W_ib in the same walk: one pass over the neighbours
+// after each sort instead of two (compute_density's sums, term for term, so the same bits).
 template <int D>
-void Dfsph<D>::compute_factors() {
+void Dfsph<D>::compute_factors(bool with_density) {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
   const PairArrays<D> pa = this->pair_arrays();
@@ -108,15 +112,19 @@ void Dfsph<D>::compute_factors() {
   const Real* const packed_x = this->pack_positions();  // 3D: records instead of gathers
   // Below this the particle has (almost) no neighbours: no pressure can act on it.
   const double tiny = 1e-6 * this->lattice_gradient_sum();
+  Real* const rho = fluid_.rho.data();
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
+    auto pass = [&](auto density) {
+    constexpr bool kDensity = decltype(density)::value;
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       const auto Kl = K;  // a local: the float stores below cannot then overwrite its constants
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
-        f8 sq{}, cnt{}, rate{}, gf[D] = {}, gb[D] = {};
+        f8 sq{}, cnt{}, rate{}, gf[D] = {}, gb[D] = {}, wf{}, wb{};
         std::size_t slot = list.first_slot(i);
         auto pair = [&](auto, const f8* d, f8 r2, i8 m) {
+          if constexpr (kDensity) wf += simd::select(m, Kl.value(r2), f8{});
           const f8 G = simd::select(m, Kl.grad_factor(r2), f8{});
           sq += G * G * r2;
           cnt += simd::select(m, f8{} + 1.0f, f8{});
@@ -134,6 +142,8 @@ void Dfsph<D>::compute_factors() {
         }
         for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                     [&](auto j, const f8* d, f8 r2, i8 m) {
+                                      if constexpr (kDensity)
+                                        wb += simd::select(m, simd::at(psi, j) * Kl.value(r2), f8{});
                                       const f8 G = simd::select(m, simd::at(psi, j) * Kl.grad_factor(r2), f8{});
                                       cnt += simd::select(m, f8{} + 1.0f, f8{});
                                       for (int k = 0; k < D; ++k) {
@@ -151,8 +161,14 @@ void Dfsph<D>::compute_factors() {
         const double denom = dot + double(mass) * mass * simd::hsum(sq);
         factor_[i] = denom > tiny ? Real(1.0 / denom) : Real(0);
         neighbours_[i] = simd::hsum(cnt);
+        if constexpr (kDensity) rho[i] = mass * simd::hsum(wf) + simd::hsum(wb);
       }
     }, ThreadPool::kPairs);
+    };
+    if (with_density)
+      pass(std::true_type{});
+    else
+      pass(std::false_type{});
   });
 }
 
@@ -182,7 +198,7 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
   const Real* const packed_v = packed_v_.data();  // written by the apply_pressure before
   // Particles with a thin neighbourhood (free surface, spray) get no divergence correction:
   // their missing neighbours read as expansion or compression that is not there (2017, §4.2).
-  const Real min_neighbours = D == 3 ? 20.0f : 7.0f;
+  const Real min_neighbours = dfsph::kMinNeighbours<D>;
   return pool_.parallel_reduce(n, 0.0, [&](std::size_t b, std::size_t e) {
     double sum = 0;
     for (std::size_t i = b; i < e; ++i) {
@@ -223,6 +239,12 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
 
 // vᵢ += Δt aᵢ with aᵢ = −Σⱼ m(Pᵢ + Pⱼ)∇Wᵢⱼ − 2Pᵢ Σ_b Ψ_b∇W_ib: the shared pressure
 // acceleration (walls mirror Pᵢ), from the cached gradients.
+double dfsph::chebyshev_weight(int it, double rho, double omega) {
+  constexpr int kChebyshevFrom = 2;  // why: at the solve loop (Dfsph::solve)
+  if (rho <= 0 || it < kChebyshevFrom) return 1.0;
+  return it == kChebyshevFrom ? 2.0 / (2.0 - rho * rho) : 4.0 / (4.0 - rho * rho * omega);
+}
+
 template <int D>
 void Dfsph<D>::apply_pressure(const Real* P, double dt) {
   const std::size_t n = fluid_.size();
@@ -282,9 +304,7 @@ int Dfsph<D>::solve(double dt, AlignedArray<Real>& total, double tolerance, cons
     // with no free surface to pin it, a near-uniform pressure is a slow mode whose residual
     // force the acceleration amplifies (Taylor–Green without the transport velocity, 80²: decay
     // rate 111% off against 74% plain).
-    constexpr int kChebyshevFrom = 2;
-    if (rho > 0 && it >= kChebyshevFrom)
-      omega = it == kChebyshevFrom ? 2.0 / (2.0 - rho * rho) : 4.0 / (4.0 - rho * rho * omega);
+    omega = dfsph::chebyshev_weight(it, rho, omega);
     const Real w = Real(omega), w1 = Real(omega - 1.0);
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
@@ -357,8 +377,8 @@ double Dfsph<D>::correct_divergence_error(double dt) {
 }
 
 #define RTSPH_INSTANTIATE(D)                                  \
-  template double Dfsph<D>::jacobi_relaxation() const;        \
-  template void Dfsph<D>::compute_factors();                  \
+  template double dfsph::jacobi_relaxation<D>(const SimSpec&, const ResolvedParams&); \
+  template void Dfsph<D>::compute_factors(bool);              \
   template void Dfsph<D>::state_loaded();                     \
   template double Dfsph<D>::correct_density_error(double);    \
   template double Dfsph<D>::correct_divergence_error(double);

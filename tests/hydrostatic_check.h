@@ -48,7 +48,7 @@ inline void settles_to_hydrostatic(int dim, double width, double height, double 
   spec.artificial_viscosity = 0.1;
   auto sim = make ? make(spec) : make_simulation(spec, 0);
   const double rho0 = spec.rest_density, g = 9.81;
-  double ke_early = 0, ratio_sum = 0;
+  double ke_early = 0, ratio_sum = 0, ke_late = 0;
   int samples = 0;
   if (t_end <= 0) t_end = dim == 2 ? 1.5 : 1.0;
   while (sim->time() < t_end) {
@@ -60,16 +60,24 @@ inline void settles_to_hydrostatic(int dim, double width, double height, double 
     // land on the high or the low ones (measured 1.108 against 1.020 averaged over every step).
     if (sim->time() > t_end - 0.3) {
       ratio_sum += bottom_pressure(*sim, spacing, rho0, g).ratio;
+      ke_late += sim->stats().kinetic_energy_j;
       ++samples;
     }
   }
   const auto st = sim->stats();
   const double ratio = ratio_sum / samples;
+  ke_late /= samples;
   const Bottom b = bottom_pressure(*sim, spacing, rho0, g);
   std::printf("%s %dD tank: bottom p / rho g (H - y) = %.4f (time-averaged), surface %.4f m, KE %.3g J "
-              "(peak %.3g J)\n", method.c_str(), dim, ratio, b.surface, st.kinetic_energy_j, ke_early);
+              "(last step; %.3g J averaged over the last 0.3 s; peak %.3g J)\n", method.c_str(), dim, ratio,
+              b.surface, st.kinetic_energy_j, ke_late, ke_early);
   EXPECT_NEAR(ratio, 1.0, tolerance);
-  EXPECT_LT(st.kinetic_energy_j, 0.25 * ke_early);  // the slosh decays from its peak
+  // The slosh decays from its peak. Averaged over the last 0.3 s, as the pressure is: the 2D PBF
+  // tank's kinetic energy flickers from step to step (bursts of its bottom layer, 0.3 to 6 J in
+  // samples 0.1 s apart). Its last step read 5.71 J against a peak of 11.1 J on an Intel host and
+  // below a quarter of the peak on the AMD hosts before it (-march=native: rsqrt and rcp differ by
+  // vendor), so a single step's figure was a coin toss; the average reads 1.1 J.
+  EXPECT_LT(ke_late, 0.25 * ke_early);
   EXPECT_EQ(st.particles_put_back, 0u);
   // No particle leaves the fluid region: the column only compresses slightly.
   const auto v = sim->fluid();

@@ -166,13 +166,22 @@ TEST_F(GpuBackend, TransportVelocityCheckpointResumesOnTheCpu) {
   EXPECT_LT(diff, 2e-5 * s.spacing);
 }
 
-// The GPU refuses only DFSPH now, with the documented one line.
-TEST_F(GpuBackend, RefusesOnlyDfsph) {
+// The GPU runs every liquid method; it refuses the gas method and DFSPH with the transport
+// velocity (WCSPH's alone there), each with the documented one line.
+TEST_F(GpuBackend, RefusesTheGasAndDfsphWithTheTransportVelocity) {
   SimSpec s = vortex(1.0);
   s.transport_velocity = 1.0;
   EXPECT_EQ(gpu::gpu_cannot_run(s), "");
   s.method = "dfsph";
-  const std::string why = gpu::gpu_cannot_run(s);
-  EXPECT_NE(why.find("dfsph"), std::string::npos) << why;
+  std::string why = gpu::gpu_cannot_run(s);
+  EXPECT_NE(why.find("solver.transport_velocity"), std::string::npos) << why;
+  EXPECT_NE(why.find("use --backend cpu"), std::string::npos) << why;
+  s.transport_velocity = 0;
+  EXPECT_EQ(gpu::gpu_cannot_run(s), "");
+  s.method = "pbf";
+  EXPECT_EQ(gpu::gpu_cannot_run(s), "");
+  s.method = "gas";
+  why = gpu::gpu_cannot_run(s);
+  EXPECT_NE(why.find("\"gas\""), std::string::npos) << why;
   EXPECT_NE(why.find("use --backend cpu"), std::string::npos) << why;
 }

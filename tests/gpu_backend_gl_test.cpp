@@ -60,7 +60,7 @@ TEST_F(GpuBackend, EveryComputeShaderCompilesForEveryDimensionAndKernel) {
 }
 
 class GpuMethods : public GpuBackend, public ::testing::WithParamInterface<const char*> {};
-INSTANTIATE_TEST_SUITE_P(All, GpuMethods, ::testing::Values("wcsph", "pbf"));
+INSTANTIATE_TEST_SUITE_P(All, GpuMethods, ::testing::Values("wcsph", "pbf", "dfsph"));
 
 // The same stable sort by the same cell keys: the GPU puts the particles in the CPU's order, and
 // their densities agree to float round-off (the sums run in a different order).
@@ -285,7 +285,7 @@ TEST_P(GpuMethods, CheckpointsResumeAcrossBackends) {
 }
 
 // The CPU methods' tank test (hydrostatic_check.h) on the GPU, with each method's tolerance:
-// WCSPH 5%, PBF 3%. (The 3D PBF tank measured 0.969 on the GPU, 3.1% low, against 0.9735 on the
+// WCSPH 5%, PBF 3%, DFSPH 5% (below). (The 3D PBF tank measured 0.969 on the GPU, 3.1% low, against 0.9735 on the
 // CPU: both sit at the edge of PBF's 3%, PBF's own deficit (issue 9), so only 2D is asserted here.)
 TEST_F(GpuBackend, WcsphTankSettlesToRhoGH) {
   test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "wcsph", 0.05, 0,
@@ -293,6 +293,12 @@ TEST_F(GpuBackend, WcsphTankSettlesToRhoGH) {
 }
 TEST_F(GpuBackend, PbfTankSettlesToRhoGH) {
   test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "pbf", 0.03, 3.0,
+                               [](const SimSpec& s) { return gpu::make_gpu_simulation(s, 1); });
+}
+// DFSPH with the CPU test's tolerance for the 2D tank (5%: the CPU reads 3.9%; tests/
+// physics_hydrostatic_test.cpp says why it is not issue 9's 1%).
+TEST_F(GpuBackend, DfsphTankSettlesToRhoGH) {
+  test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "dfsph", 0.05, 0,
                                [](const SimSpec& s) { return gpu::make_gpu_simulation(s, 1); });
 }
 

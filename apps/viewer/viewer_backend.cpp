@@ -16,8 +16,8 @@ ViewerBackend choose_viewer_backend(const std::string& flag, const SimSpec& spec
   if (backend != "gpu") return b;  // the default factory: make_simulation
   if (!no_compute.empty()) throw BackendUnavailable("--backend gpu: " + no_compute);
   if (const std::string why = gpu::gpu_cannot_run(spec); !why.empty()) throw BackendUnavailable(why);
-  // A scene picked later in the panel that the GPU cannot run (DFSPH, surface tension) runs on the
-  // CPU, still on this thread.
+  // A scene picked later in the panel that the GPU cannot run (the gas method, DFSPH with the
+  // transport velocity) runs on the CPU, still on this thread.
   b.make = [](const SimSpec& s, int threads) {
     return gpu::gpu_cannot_run(s).empty() ? gpu::make_gpu_simulation(s, threads) : make_simulation(s, threads);
   };

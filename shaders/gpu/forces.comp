@@ -7,13 +7,20 @@
 // approaching pairs, and the no-slip factor beta = 1 + d_b/d_i on container walls and obstacle
 // faces, for particles in front of the sample (Morris, Fox & Zhu 1997, eqs. 30-31; d_i floored
 // at a quarter spacing).
+// With NONPRESSURE (DFSPH's non-pressure accelerations, whose pressure comes from its solves):
+// no P_i, P_j or Adami p_b; the walls carry the hydrostatic part alone, P_b = -g.(x_i - x_b)/rho0
+// (the CPU's ForceTerms::wall_hydrostatic, as in pbf_external.comp).
 BUFFER_POS BUFFER_VEL BUFFER_ACC BUFFER_DENS BUFFER_FKEY BUFFER_FSTART BUFFER_BPOS BUFFER_BVEL BUFFER_BNORMAL BUFFER_BSTART BUFFER_BPRESS
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= P.fluid_count) return;
   vec3 xi = pos[i].xyz, vi = vel[i].xyz;
   vec4 di = dens[i];
+#ifdef NONPRESSURE
+  float rhoi = di.x, Pi = 0.0, iri = di.w;
+#else
   float rhoi = di.x, Pi = di.z, iri = di.w;
+#endif
   uint key = fkey[i];
   vec3 a = vec3(0.0);
   for (int r = 0; r < stencil_count(); ++r) {
@@ -27,7 +34,11 @@ void main() {
       float vr = dot(vij, d);
       vec4 dj = dens[j];
       float inv = 1.0 / (r2 + P.eps);
+#ifdef NONPRESSURE
+      float pij = 0.0;
+#else
       float pij = Pi + dj.z;
+#endif
       if (vr < 0.0) pij += -P.ach * vr * inv * 2.0 / (rhoi + dj.x);
       float lam = P.mass * P.nu * (iri + dj.w) * G * r2 * inv;
       a += (-P.mass * pij * G) * d + lam * vij;
@@ -42,7 +53,11 @@ void main() {
       vec3 vib = vi - bv.xyz;
       float vr = dot(vib, d);
       float inv = 1.0 / (r2 + P.eps);
+#ifdef NONPRESSURE
+      float pib = -dot(P.gravity.xyz, d) * P.inv_rho0;
+#else
       float pib = Pi + bpress[j];
+#endif
       if (vr < 0.0) pib += -P.ach * vr * inv * iri;
       float depth = bv.w;
       float front = dot(bnormal[j].xyz, d);  // > 0: x_i lies in front of the sample's face

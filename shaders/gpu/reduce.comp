@@ -5,24 +5,33 @@
 //   2: (sum m|v|^2/2, sum -m g.x, max |v|^2, -)  energies and the maximum speed
 //   3: (max |v|^2, max rho, max -rho, max p)     the colour scale's ranges (drawing)
 //   4: (max -p, -, -, -)
+//   5: (max z, max -z, -, -) with z = -g.x      DFSPH's head: the fluid's extent along gravity
+//   6: (sum solve.w, -, -, -)                    DFSPH's mean residual error
+//   7: (sum rho, -, -, -)                        DFSPH's density bias in a filled periodic box
 // FINAL = 0: partials[1 + block] for each block; FINAL = 1: reduces those into stats[slot]
 // (mode 1 also keeps the running maximum in stats[slot].w).
 BUFFER_POS BUFFER_VEL BUFFER_ACC BUFFER_DENS
+#if MODE == 6
+BUFFER_DFSPH_SOLVE
+#endif
 layout(std430, binding = RTSPH_B_REDUCE) buffer R { dvec4 partials[]; };
 layout(std430, binding = RTSPH_B_STATS) buffer S { dvec4 stats[]; };
 uniform uint n, slot;
 uniform vec3 g_energy;  // mode 2: gravity alone (the potential energy; not the body force)
+uniform dvec3 g_head;   // mode 5: gravity alone, in double as the CPU's DFSPH step takes it
 shared dvec4 tmp[RTSPH_WG];
 
-#if MODE >= 3
+#if MODE >= 3 && MODE <= 5
 const dvec4 kIdentity = dvec4(-1e300lf);
 #else
 const dvec4 kIdentity = dvec4(0.0lf);
 #endif
 
 dvec4 combine(dvec4 a, dvec4 b) {
-#if MODE == 0 || MODE >= 3
+#if MODE == 0 || (MODE >= 3 && MODE <= 5)
   return max(a, b);
+#elif MODE >= 6
+  return dvec4(a.x + b.x, 0.0lf, 0.0lf, 0.0lf);
 #elif MODE == 1
   return dvec4(max(a.x, b.x), a.y + b.y, a.z + b.z, 0.0lf);
 #else
@@ -49,8 +58,16 @@ dvec4 item(uint i) {
   dvec3 v = dvec3(vel[i].xyz);
   vec4 d = dens[i];
   return dvec4(v.x * v.x + v.y * v.y + v.z * v.z, double(d.x), -double(d.x), double(d.y));
-#else
+#elif MODE == 4
   return dvec4(-double(dens[i].y), -1e300lf, -1e300lf, -1e300lf);
+#elif MODE == 5
+  dvec3 x = dvec3(pos[i].xyz), g = g_head;
+  double z = -(g.x * x.x + g.y * x.y + g.z * x.z);
+  return dvec4(z, -z, -1e300lf, -1e300lf);
+#elif MODE == 6
+  return dvec4(double(solve[i].w), 0.0lf, 0.0lf, 0.0lf);
+#else
+  return dvec4(double(dens[i].x), 0.0lf, 0.0lf, 0.0lf);
 #endif
 }
 

@@ -6,17 +6,24 @@
 
 #include <epoxy/gl.h>
 
+#include "gpu/gpu_dfsph.h"
 #include "gpu/gpu_pbf.h"
 #include "gpu/gpu_wcsph.h"
 
 namespace rtsph::gpu {
 
-bool gpu_supports_method(const std::string& method) { return method == "wcsph" || method == "pbf"; }
+bool gpu_supports_method(const std::string& method) {
+  return method == "wcsph" || method == "pbf" || method == "dfsph";
+}
 
 std::string gpu_cannot_run(const SimSpec& spec) {
   if (!gpu_supports_method(spec.method))
-    return fmt::format("scene '{}': solver.method = \"{}\": the GPU backend runs \"wcsph\" and \"pbf\" so far; use --backend cpu",
+    return fmt::format("scene '{}': solver.method = \"{}\": the GPU backend runs \"wcsph\", \"pbf\" and \"dfsph\"; use --backend cpu",
                        spec.name, spec.method);
+  if (spec.method == "dfsph" && spec.transport_velocity > 0)
+    return fmt::format("scene '{}': solver.transport_velocity = {}: the GPU backend runs the transport velocity with "
+                       "\"wcsph\" only; use --backend cpu",
+                       spec.name, spec.transport_velocity);
   return {};
 }
 
@@ -30,6 +37,10 @@ bool software_renderer() {
 
 std::unique_ptr<Simulation> make_gpu_simulation(const SimSpec& spec, int threads) {
   if (const std::string why = gpu_cannot_run(spec); !why.empty()) throw std::invalid_argument(why);
+  if (spec.method == "dfsph") {
+    if (spec.dimension == 2) return std::make_unique<GpuDfsph<2>>(spec, threads);
+    return std::make_unique<GpuDfsph<3>>(spec, threads);
+  }
   if (spec.method == "pbf") {
     if (spec.dimension == 2) return std::make_unique<GpuPbf<2>>(spec, threads);
     return std::make_unique<GpuPbf<3>>(spec, threads);

@@ -104,7 +104,7 @@ void GpuWorld<D>::compile_programs() {
   kick_ = ComputeProgram("kick.comp", defines_);
   kick_drift_ = ComputeProgram("kick_drift.comp", defines_);
   move_boundary_ = ComputeProgram("move_boundary.comp", defines_);
-  for (int m = 0; m < 5; ++m) {
+  for (int m = 0; m < kReduceModes; ++m) {
     auto d = defines_;
     d.push_back(fmt::format("MODE {}", m));
     d.push_back("FINAL 0");
@@ -208,6 +208,7 @@ void GpuWorld<D>::upload_fluid(std::size_t first, std::size_t count) {
     capacity_ = (first + count) * 2;
     for (Buffer* b : {&pos_, &vel_, &acc_, &dens_, &pos_alt_, &vel_alt_}) b->reserve(capacity_ * sizeof(vec4));
     for (Buffer* b : {&id_, &id_alt_}) b->reserve(capacity_ * 4);
+    reserve_device_fields();
     count += first;
     first = 0;
   }
@@ -241,6 +242,36 @@ void GpuWorld<D>::upload_fluid(std::size_t first, std::size_t count) {
       t[i] = {ts[0], ts[1], ts[2], 0};
     }
     tdv_.upload(t.data(), count * sizeof(vec4), first * sizeof(vec4));
+  }
+  upload_device_fields(first, count);
+}
+
+template <int D>
+void GpuWorld<D>::add_device_field(const DeviceField& f) {
+  device_fields_.push_back(f);
+  reserve_device_fields();
+  upload_device_fields(0, this->fluid_.size());
+}
+
+template <int D>
+void GpuWorld<D>::reserve_device_fields() {
+  for (const DeviceField& f : device_fields_) {
+    f.buffer->reserve(capacity_ * sizeof(vec4));
+    if (f.sorted) f.alt->reserve(capacity_ * sizeof(vec4));
+  }
+}
+
+template <int D>
+void GpuWorld<D>::upload_device_fields(std::size_t first, std::size_t count) {
+  if (count == 0) return;
+  std::vector<std::array<float, 4>> t(count);
+  for (const DeviceField& f : device_fields_) {
+    for (std::size_t i = 0; i < count; ++i)
+      for (int c = 0; c < 4; ++c) {
+        const AlignedArray<Real>* h = f.host[c];
+        t[i][c] = h && first + i < h->size() ? (*h)[first + i] : 0.0f;
+      }
+    f.buffer->upload(t.data(), count * sizeof(vec4), first * sizeof(vec4));
   }
 }
 
@@ -336,6 +367,11 @@ void GpuWorld<D>::sort_particles() {
     tdv_alt_.reserve(capacity_ * sizeof(vec4));
     sorter_->gather(fluid_cells_.order, n, {&tdv_}, {&tdv_alt_});
     tdv_.swap(tdv_alt_);
+  }
+  for (const DeviceField& f : device_fields_) {  // a method's arrays that outlive a step
+    if (!f.sorted) continue;
+    sorter_->gather(fluid_cells_.order, n, {f.buffer}, {f.alt});
+    f.buffer->swap(*f.alt);
   }
   if (this->boundary_moving_) sort_boundary();
 }

@@ -8,6 +8,7 @@
 // (fluid(), boundary(), state_fields()); a step reads back a few bytes at most: the maximum
 // speed and acceleration for an adaptive time step. Every call needs the OpenGL context that
 // was current when the simulation was made to be current on the calling thread.
+#include <array>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,6 +59,13 @@ class GpuWorld : public FluidWorld<D> {
   /// The mean compression of the densities now in the buffer, read back (8 bytes): PBF's
   /// stopping check. Its own stats slot, so the step's reported figures stay the final ones.
   double mean_compression_now();
+  /// |g| times the fluid's extent along gravity (DFSPH's head speed squared), read back.
+  double gpu_head();
+  /// The mean of the solve buffer's error column (RTSPH_B_DFSPH_SOLVE, bound by the caller):
+  /// DFSPH's stopping check, 8 bytes read back.
+  double gpu_mean_solve_error();
+  /// The mean density over the fluid, read back.
+  double gpu_mean_density();
   void boundary_pressure();                   // Adami 2012's wall pressure
   void forces();                              // the acceleration sum (forces.comp)
   /// Adds surface tension and adhesion to the accelerations when the scene has them (Akinci
@@ -75,6 +83,19 @@ class GpuWorld : public FluidWorld<D> {
   void kick(double dt);                       // v += a dt
   /// After a step: the host copies are stale until the next read.
   void mark_stale() { host_fresh_ = scalars_fresh_ = boundary_fresh_ = false; }
+  /// A per-particle vec4 array a GPU method keeps across steps. Its columns mirror up to four of
+  /// the method's host fields (FluidWorld::add_method_field; nullptr for none), so checkpoints
+  /// and read-backs see them: it is downloaded with the particle arrays and uploaded with them
+  /// (emitted particles get the host's zeros, a loaded state its values), and every sort gathers
+  /// it along when `sorted`.
+  struct DeviceField {
+    Buffer* buffer = nullptr;
+    Buffer* alt = nullptr;  // the sort's gather target (sorted fields)
+    std::array<AlignedArray<Real>*, 4> host{};
+    bool sorted = false;
+  };
+  /// Registers a device field; reserves its buffers and uploads the host's current values.
+  void add_device_field(const DeviceField& f);
   /// Binds every shared buffer to its layout.h binding (before a method's own passes too).
   void bind_all() const;
   const std::vector<std::string>& defines() const { return defines_; }
@@ -88,6 +109,9 @@ class GpuWorld : public FluidWorld<D> {
 
  private:
   void compile_programs();
+  void reserve_device_fields();
+  void upload_device_fields(std::size_t first, std::size_t count);
+  void download_device_fields() const;
   void upload_boundary();
   void upload_obstacles();
   void sort_boundary();
@@ -99,6 +123,7 @@ class GpuWorld : public FluidWorld<D> {
   void measure_energies(SimStats& s) const override;
 
   std::vector<std::string> defines_;
+  std::vector<DeviceField> device_fields_;
   std::unique_ptr<CellSorter> sorter_;
   ComputeProgram density_, density_only_, boundary_pressure_, forces_, kick_, kick_drift_, move_boundary_;
   ComputeProgram surface_normal_, surface_forces_;
@@ -108,7 +133,8 @@ class GpuWorld : public FluidWorld<D> {
   Buffer tdv_, tdv_alt_;  // ṽ − v per fluid particle, in the particles' order (sorted with them)
   bool transport() const { return this->spec_.transport_velocity > 0 && this->spec_.method == "wcsph"; }
   Buffer shift_delta_;  // shifting's δx, one vec4 per fluid particle
-  ComputeProgram reduce_[5], reduce_final_[5];
+  static constexpr int kReduceModes = 8;  // reduce.comp's MODEs
+  ComputeProgram reduce_[kReduceModes], reduce_final_[kReduceModes];
   /// Runs reduction `mode` of reduce.comp into stats slot `slot` (two passes, fixed order).
   void reduce(int mode, unsigned slot) const;
   GLuint params_ubo_ = 0;

@@ -10,7 +10,10 @@
 namespace rtsph::gpu::detail {
 
 // Slots of the stats buffer (reduce.comp writes them).
-enum StatSlot : GLuint { kExtremes = 0, kDensity = 1, kEnergy = 2, kRanges = 3, kRanges2 = 4, kSolve = 5, kSlots = 6 };
+enum StatSlot : GLuint {
+  kExtremes = 0, kDensity = 1, kEnergy = 2, kRanges = 3, kRanges2 = 4, kSolve = 5, kHead = 6, kResidual = 7,
+  kSlots = 8
+};
 struct alignas(32) DVec4 { double x, y, z, w; };
 
 inline GLuint blocks_of(std::size_t n) { return GLuint((n + RTSPH_WG - 1) / RTSPH_WG); }

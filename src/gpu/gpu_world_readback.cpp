@@ -25,12 +25,16 @@ void GpuWorld<D>::reduce(int mode, unsigned slot) const {
   self->partials_.reserve((1 + std::size_t(blocks)) * sizeof(DVec4));
   bind_all();
   partials_.bind(RTSPH_B_REDUCE);
-  if (mode == 2) {
-    // The potential energy is gravity's alone, as on the CPU (not the scene's body force).
+  if (mode == 2 || mode == 5) {
+    // The potential energy and DFSPH's head are gravity's alone, as on the CPU (not the scene's
+    // body force); the head in double, so that both backends choose the same Δt.
     const Vec3d g = this->spec_.gravity;
-    const GLuint prog = reduce_[2].id();
-    glProgramUniform3f(prog, glGetUniformLocation(prog, "g_energy"), float(g[0]), float(g[1]),
-                       D == 3 ? float(g[2]) : 0.0f);
+    const GLuint prog = reduce_[mode].id();
+    if (mode == 2)
+      glProgramUniform3f(prog, glGetUniformLocation(prog, "g_energy"), float(g[0]), float(g[1]),
+                         D == 3 ? float(g[2]) : 0.0f);
+    else
+      glProgramUniform3d(prog, glGetUniformLocation(prog, "g_head"), g[0], g[1], D == 3 ? g[2] : 0.0);
   }
   reduce_[mode].set("n", GLuint(n));
   reduce_[mode].dispatch_groups(blocks);
@@ -57,6 +61,35 @@ double GpuWorld<D>::mean_compression_now() {
   stats_.download(&r, sizeof r, kSolve * sizeof(DVec4));
   const std::size_t n = this->fluid_.size();
   return n ? r.y / double(n) : 0.0;
+}
+
+template <int D>
+double GpuWorld<D>::gpu_head() {
+  if (this->fluid_.size() == 0) return 0.0;
+  reduce(5, kHead);
+  DVec4 r{};
+  stats_.download(&r, sizeof r, kHead * sizeof(DVec4));
+  return r.x + r.y;
+}
+
+template <int D>
+double GpuWorld<D>::gpu_mean_solve_error() {
+  const std::size_t n = this->fluid_.size();
+  if (n == 0) return 0.0;
+  reduce(6, kResidual);
+  DVec4 r{};
+  stats_.download(&r, sizeof r, kResidual * sizeof(DVec4));
+  return r.x / double(n);
+}
+
+template <int D>
+double GpuWorld<D>::gpu_mean_density() {
+  const std::size_t n = this->fluid_.size();
+  if (n == 0) return 0.0;
+  reduce(7, kResidual);
+  DVec4 r{};
+  stats_.download(&r, sizeof r, kResidual * sizeof(DVec4));
+  return r.x / double(n);
 }
 
 template <int D>
@@ -151,8 +184,24 @@ void GpuWorld<D>::sync_host() const {
       for (int k = 0; k < D; ++k) self->transport_dv_[k][i] = ts[k];
     }
   }
+  download_device_fields();
   sync_boundary_host();
   host_fresh_ = true;
+}
+
+template <int D>
+void GpuWorld<D>::download_device_fields() const {
+  const std::size_t n = this->fluid_.size();
+  std::vector<std::array<float, 4>> t(n);
+  for (const DeviceField& f : device_fields_) {
+    f.buffer->download(t.data(), n * sizeof(vec4));
+    for (int c = 0; c < 4; ++c) {
+      AlignedArray<Real>* h = f.host[c];
+      if (!h) continue;
+      h->resize(n);
+      for (std::size_t i = 0; i < n; ++i) (*h)[i] = t[i][c];
+    }
+  }
 }
 
 template <int D>
@@ -223,6 +272,7 @@ void GpuWorld<D>::state_loaded() {
     capacity_ = n + std::size_t(count_particles(this->spec_).emitted_max);
     for (Buffer* b : {&pos_, &vel_, &acc_, &dens_, &pos_alt_, &vel_alt_}) b->reserve(capacity_ * sizeof(vec4));
     for (Buffer* b : {&id_, &id_alt_}) b->reserve(capacity_ * 4);
+    reserve_device_fields();
   }
   write_params(this->dt_, 0);
   upload_fluid(0, n);
@@ -250,11 +300,15 @@ void GpuWorld<D>::overwrite_fluid(const float* const* x, const float* const* v) 
   template GpuWorld<D>::Extremes GpuWorld<D>::gpu_max_speed_and_acceleration();         \
   template void GpuWorld<D>::measure_density_error_gpu();                                \
   template double GpuWorld<D>::mean_compression_now();                                   \
+  template double GpuWorld<D>::gpu_head();                                               \
+  template double GpuWorld<D>::gpu_mean_solve_error();                                   \
+  template double GpuWorld<D>::gpu_mean_density();                                       \
   template void GpuWorld<D>::measure_energies(SimStats&) const;                          \
   template std::optional<DeviceParticles> GpuWorld<D>::device_particles() const;         \
   template std::optional<HealthFacts> GpuWorld<D>::health_facts() const;                 \
   template void GpuWorld<D>::sync_scalars() const;                                       \
   template void GpuWorld<D>::sync_host() const;                                          \
+  template void GpuWorld<D>::download_device_fields() const;                             \
   template void GpuWorld<D>::sync_boundary_host() const;                                 \
   template ParticleView GpuWorld<D>::fluid() const;                                      \
   template BoundaryView GpuWorld<D>::boundary() const;                                   \

@@ -66,6 +66,14 @@ struct alignas(32) dvec4 { double x, y, z, w; };
 #define RTSPH_B_POS_NEXT RTSPH_B_GATHER_OUT0  // vec4: positions after a Jacobi correction
 #define RTSPH_B_DELTA RTSPH_B_GATHER_OUT1     // vec4: XSPH and vorticity velocity change
 #define RTSPH_B_OMEGA RTSPH_B_GATHER_OUT2     // vec4: vorticity
+// DFSPH's arrays borrow them the same way (WGRAD as PBF's). Only the warm start outlives a step;
+// it is carried through the sort by a gather of its own.
+#define RTSPH_B_DFSPH_SOLVE RTSPH_B_GATHER_IN0   // vec4: this sweep's change of P_i, the last sweep's
+                                                 //   (Chebyshev), the solve's total P_i, the residual
+#define RTSPH_B_DFSPH_FACTOR RTSPH_B_GATHER_IN1  // vec4: alpha_i (eq. 8), neighbour count,
+                                                 //   sum_b Psi_b v_b.grad W_ib, unused
+#define RTSPH_B_DFSPH_WARM RTSPH_B_GATHER_IN3    // vec4: last step's totals P dt^2 (density) and P dt
+                                                 //   (divergence), unused, unused
 // Surface tension's normals are written and read within one force stage, after the sort.
 #define RTSPH_B_NORMAL RTSPH_B_GATHER_OUT3    // vec4: surface normal n_i (Akinci et al. 2013)
 // WCSPH's transport velocity: written before the drift, carried through the sort by a gather of

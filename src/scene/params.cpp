@@ -124,7 +124,7 @@ const std::vector<ParamInfo>& parameter_table() {
       field<&SimSpec::backend>({.key = "solver.backend", .default_text = "auto",
                                 .choices = {"auto", "cpu", "gpu"},
                                 .help = "Where the solver runs: cpu, gpu (OpenGL 4.3 compute; "
-                                        "wcsph and pbf so far) or auto (the command's default: the CPU for "
+                                        "wcsph, pbf and dfsph) or auto (the command's default: the CPU for "
                                         "run and bench). --backend overrides it."}),
       field<&SimSpec::eos>({.key = "solver.eos", .default_text = "tait", .choices = {"tait", "linear"},
                             .help = "Equation of state: Tait p = B((ρ/ρ0)^γ - 1) or linear "

@@ -1,0 +1,42 @@
+// DFSPH's residual and Jacobi sweep (the CPU's Dfsph::residual; Bender & Koschier 2017,
+// Algorithms 2-3): with the current velocities
+//   D rho_i/Dt = sum_j m (v_i - v_j).grad W_ij + sum_b Psi_b (v_i - v_b).grad W_ib     (eq. 9)
+// and the residual r = rho_i + dt D rho_i/Dt - rho0 (density; minus the periodic bias) or
+// r = D rho_i/Dt (divergence), the sweep's pressure P = total + omega r alpha_i / dt^2 (or / dt),
+// projected to P >= 0 when negative pressure is clamped; solve[i].x gets P - total. solve[i].w
+// gets the particle's share of the mean relative error: |r| where pressure acts, compression
+// elsewhere (clamped), |r| otherwise; zero for a thin neighbourhood in the divergence solve.
+BUFFER_POS BUFFER_VEL BUFFER_DENS BUFFER_FKEY BUFFER_FSTART BUFFER_WGRAD BUFFER_DFSPH_FACTOR BUFFER_DFSPH_SOLVE
+uniform int density;          // 1: the density solve, 0: the divergence solve
+uniform double relax, to_p, bias, error_scale;  // omega; 1/dt^2 or 1/dt; kg/m^3; 1/rho0 or dt/rho0
+uniform float min_neighbours;
+void main() {
+  uint i = gl_GlobalInvocationID.x;
+  if (i >= P.fluid_count) return;
+  vec3 xi = pos[i].xyz, vi = vel[i].xyz;
+  uint key = fkey[i];
+  float rf = 0.0;
+  for (int r = 0; r < stencil_count(); ++r) {
+    uvec2 c = stencil_range(key, r);
+    for (uint j = fstart[c.x]; j < fstart[c.y]; ++j) {
+      vec3 d = min_image(xi - pos[j].xyz);
+      float r2 = dot(d, d);
+      if (r2 >= P.support2) continue;
+      rf += dot(vi - vel[j].xyz, kernel_g(r2) * d);
+    }
+  }
+  vec4 fac = factor[i];
+  double rate = double(P.mass) * double(rf) - double(fac.z) + double(dot(vi, wgrad[i].xyz));
+  double r = density != 0 ? double(dens[i].x) + double(P.dt) * rate - double(P.rho0) - bias : rate;
+  bool thin = density == 0 && fac.y < min_neighbours;
+  bool clamp = (P.flags & RTSPH_F_CLAMP_NEGATIVE) != 0u;
+  vec4 s = solve[i];
+  double p = thin ? 0.0lf : double(s.z) + relax * r * double(fac.x) * to_p;
+  if (clamp) p = max(p, 0.0lf);
+  s.x = float(p - double(s.z));
+  if (thin) r = 0.0lf;
+  else if (clamp) r = p > 0.0lf ? abs(r) : max(r, 0.0lf);
+  else r = abs(r);
+  s.w = float(r * error_scale);
+  solve[i] = s;
+}

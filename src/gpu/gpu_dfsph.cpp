@@ -1,0 +1,243 @@
+#include "gpu/gpu_dfsph.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+
+#include "core/timer.h"
+#include "gpu/layout.h"
+#include "solvers/dfsph.h"
+
+namespace rtsph::gpu {
+
+template <int D>
+GpuDfsph<D>::GpuDfsph(const SimSpec& spec, int threads) : GpuWorld<D>(spec, threads) {
+  const auto& d = this->defines();
+  {
+    auto dn = d;
+    dn.push_back("NONPRESSURE 1");
+    nonpressure_ = ComputeProgram("forces.comp", dn);
+  }
+  factors_ = ComputeProgram("dfsph_factors.comp", d);
+  apply_ = ComputeProgram("dfsph_apply.comp", d);
+  residual_ = ComputeProgram("dfsph_residual.comp", d);
+  sweep_ = ComputeProgram("dfsph_sweep.comp", d);
+  totals_ = ComputeProgram("dfsph_totals.comp", d);
+  relax_ = dfsph::jacobi_relaxation<D>(this->spec_, this->prm_);
+  tiny_ = 1e-6 * this->lattice_gradient_sum();
+  // The CPU's method fields, in the CPU's order (Dfsph's constructor): a checkpoint lists them.
+  this->add_method_field({"factor", &factor_, false, true});
+  this->add_method_field({"neighbours", &neighbours_, false, true});
+  this->add_method_field({"pressure", &pressure_, false, false});
+  this->add_method_field({"last_step", &last_step_, false, false});
+  this->add_method_field({"warm_density", &warm_density_, true, true});
+  this->add_method_field({"warm_divergence", &warm_divergence_, true, true});
+  this->add_device_field({&warm_, &warm_alt_, {&warm_density_, &warm_divergence_, nullptr, nullptr}, true});
+  this->add_device_field({&factor_buf_, nullptr, {&factor_, &neighbours_, nullptr, nullptr}, false});
+  for (Buffer* b : {&solve_, &wgrad_}) b->reserve(this->capacity() * sizeof(glsl::vec4));
+  this->sort_particles();  // the cell ranges (the fluid is already in cell order)
+  factors(true);
+  this->measure_density_error_gpu();
+  this->mark_stale();
+  this->reset_stage_times();
+}
+
+// Algorithm 1 of Bender & Koschier 2017, as the CPU's Dfsph::step.
+template <int D>
+void GpuDfsph<D>::step() {
+  failure_.clear();
+  const SimSpec& s = this->spec_;
+  const std::size_t n = this->fluid_.size();
+  for (Buffer* b : {&solve_, &wgrad_}) b->reserve(this->capacity() * sizeof(glsl::vec4));
+  {
+    ScopedTimer timer(this->times_.forces_s);
+    this->write_params(this->dt_, 0);  // the force passes read no Δt
+    this->bind_all();
+    nonpressure_.dispatch(n);          // a_nonp: viscosity, gravity, walls, brush   (line 4)
+    this->surface_forces();            // optional: Akinci 2013
+  }
+  const double dt = choose_time_step();  // CFL and the head speed               (line 5)
+  {
+    ScopedTimer timer(this->times_.integrate_s);
+    this->write_params(dt, 0);
+    this->kick(dt);                      // v* = v + Δt a_nonp                     (line 6)
+  }
+  // Where the fluid fills a periodic box with two-sided pressure, the density solve targets the
+  // mean kernel sum (the CPU's Dfsph::correct_density_error says why).
+  density_bias_ = 0;
+  {
+    const int all = (1 << D) - 1;
+    double volume = 1;
+    for (int k = 0; k < D; ++k) volume *= s.domain_max[k] - s.domain_min[k];
+    const bool filled = double(n) * std::pow(s.spacing, D) >= 0.98 * volume;
+    if (!s.clamp_negative_pressure && (int(s.periodic) & all) == all && filled)
+      density_bias_ = this->gpu_mean_density() - this->prm_.rho0;
+  }
+  density_iterations_ = solve(true, dt, s.dfsph_max_density_error, "density");  // Alg. 3 (line 7)
+  {
+    ScopedTimer timer(this->times_.integrate_s);
+    this->kick_drift();                            // x += Δt v*, walls, put-back   (line 8)
+    this->advance_scene_gpu(this->time_ + dt, dt); // obstacles, emitters
+  }
+  {
+    ScopedTimer timer(this->times_.neighbours_s);
+    this->sort_particles();                        //                              (line 9)
+  }
+  this->shift_particles_gpu(dt);                   // optional shifting
+  {
+    ScopedTimer timer(this->times_.density_s);
+    factors(true);                                 // ρᵢ, αᵢ                 (lines 10-11)
+    this->measure_density_error_gpu();
+  }
+  divergence_iterations_ = solve(false, dt, s.dfsph_max_divergence_error, "divergence");  // Alg. 2
+  {
+    // The step's pressure for output, p = ρ²(P_density + P_divergence).
+    ScopedTimer timer(this->times_.forces_s);
+    bind_method();
+    totals_.set("mode", GLint(2));
+    totals_.dispatch(n);
+  }
+  this->time_ += dt;
+  this->dt_ = dt;
+  ++this->steps_;
+  capped_steps_ += !failure_.empty();
+  density_iteration_sum_ += density_iterations_;
+  divergence_iteration_sum_ += divergence_iterations_;
+  this->mark_stale();
+}
+
+template <int D>
+double GpuDfsph<D>::choose_time_step() {
+  const SimSpec& s = this->spec_;
+  if (s.time_step_mode == TimeStepMode::Fixed) return s.dt;
+  const auto m = this->gpu_max_speed_and_acceleration();
+  double g = 0;
+  for (int k = 0; k < D; ++k) g += s.gravity[k] * s.gravity[k];
+  const double head = g > 0 ? this->gpu_head() : 0.0;
+  return dfsph::time_step(s, this->prm_, m.v2, m.a2, head, this->viscous_dt_limit());
+}
+
+template <int D>
+void GpuDfsph<D>::bind_method() const {
+  this->bind_all();
+  solve_.bind(RTSPH_B_DFSPH_SOLVE);
+  factor_buf_.bind(RTSPH_B_DFSPH_FACTOR);
+  wgrad_.bind(RTSPH_B_WGRAD);
+  warm_.bind(RTSPH_B_DFSPH_WARM);
+}
+
+template <int D>
+void GpuDfsph<D>::factors(bool with_density) {
+  bind_method();
+  factors_.set("tiny", Real(tiny_));
+  factors_.set("with_density", GLint(with_density ? 1 : 0));
+  factors_.dispatch(this->fluid_.size());
+}
+
+template <int D>
+void GpuDfsph<D>::apply_pressure(int source) {
+  bind_method();
+  apply_.set("source", GLint(source));
+  apply_.dispatch(this->fluid_.size());
+}
+
+template <int D>
+double GpuDfsph<D>::residual(bool density, double dt) {
+  bind_method();
+  const GLuint prog = residual_.id();
+  residual_.set("density", GLint(density ? 1 : 0));
+  residual_.set("min_neighbours", dfsph::kMinNeighbours<D>);
+  glProgramUniform1d(prog, glGetUniformLocation(prog, "relax"), relax_);
+  glProgramUniform1d(prog, glGetUniformLocation(prog, "to_p"), density ? 1.0 / (dt * dt) : 1.0 / dt);
+  glProgramUniform1d(prog, glGetUniformLocation(prog, "bias"), density ? density_bias_ : 0.0);
+  glProgramUniform1d(prog, glGetUniformLocation(prog, "error_scale"),
+                     (density ? 1.0 : dt) / this->prm_.rho0);
+  residual_.dispatch(this->fluid_.size());
+  solve_.bind(RTSPH_B_DFSPH_SOLVE);
+  return this->gpu_mean_solve_error();
+}
+
+// The CPU's Dfsph::solve: the warm start (a share of the last step's total, stored independent
+// of Δt), then relaxed Jacobi sweeps, Chebyshev-accelerated in clamped density solves, until the
+// mean error reaches the tolerance (at least two sweeps for density, one for divergence).
+template <int D>
+int GpuDfsph<D>::solve(bool density, double dt, double tolerance, const char* name) {
+  ScopedTimer timer(density ? this->times_.density_s : this->times_.forces_s);
+  const SimSpec& s = this->spec_;
+  const std::size_t n = this->fluid_.size();
+  const double to_p = density ? 1.0 / (dt * dt) : 1.0 / dt;
+  const GLuint totals = totals_.id();
+  bind_method();
+  totals_.set("mode", GLint(0));
+  totals_.set("component", GLint(density ? 0 : 1));
+  glProgramUniform1d(totals, glGetUniformLocation(totals, "scale"), to_p * dfsph::kWarm);
+  totals_.dispatch(n);
+  apply_pressure(2);
+  const int max_iterations = std::max(1, s.dfsph_max_iterations);
+  const int min_iterations = density ? 2 : 1;
+  int it = 0;
+  double err = residual(density, dt);
+  const double rho = density && s.clamp_negative_pressure ? s.dfsph_chebyshev : 0.0;
+  double omega = 1.0;
+  while ((err > tolerance || it < min_iterations) && it < max_iterations) {
+    omega = dfsph::chebyshev_weight(it, rho, omega);
+    bind_method();
+    sweep_.set("w", Real(omega));
+    sweep_.set("w1", Real(omega - 1.0));
+    sweep_.set("first", GLint(it == 0 ? 1 : 0));
+    sweep_.dispatch(n);
+    apply_pressure(0);
+    err = residual(density, dt);
+    ++it;
+  }
+  bind_method();
+  totals_.set("mode", GLint(1));
+  totals_.set("component", GLint(density ? 0 : 1));
+  glProgramUniform1d(totals, glGetUniformLocation(totals, "scale"), 1.0 / to_p);
+  totals_.dispatch(n);
+  if (err > tolerance && failure_.empty()) {
+    char buf[200];
+    std::snprintf(buf, sizeof buf,
+                  "DFSPH %s solve did not converge in %d iterations at t = %.4g s (mean error "
+                  "%.3g%%, tolerance %.3g%%)",
+                  name, it, this->time_ + dt, 100 * err, 100 * tolerance);
+    failure_ = buf;
+  }
+  return it;
+}
+
+// A loaded state: the base uploads the particles and the device fields (the warm start); the
+// factors follow from the positions, as the CPU's Dfsph::state_loaded recomputes them.
+template <int D>
+void GpuDfsph<D>::state_loaded() {
+  GpuWorld<D>::state_loaded();
+  for (Buffer* b : {&solve_, &wgrad_}) b->reserve(this->capacity() * sizeof(glsl::vec4));
+  this->write_params(this->dt_, 0);
+  this->sort_particles();  // the cell starts of the loaded order (already sorted: unchanged)
+  factors(false);
+}
+
+template <int D>
+void GpuDfsph<D>::add_method_scalars(std::vector<StateField>& f) {
+  f.push_back({"dfsph.density_iterations", &density_iterations_, sizeof density_iterations_});
+  f.push_back({"dfsph.divergence_iterations", &divergence_iterations_, sizeof divergence_iterations_});
+  f.push_back({"dfsph.density_iteration_sum", &density_iteration_sum_, sizeof density_iteration_sum_});
+  f.push_back({"dfsph.divergence_iteration_sum", &divergence_iteration_sum_,
+               sizeof divergence_iteration_sum_});
+  f.push_back({"dfsph.capped_steps", &capped_steps_, sizeof capped_steps_});
+}
+
+template <int D>
+void GpuDfsph<D>::add_method_stats(SimStats& s) const {
+  s.pressure_iterations = density_iterations_;
+  s.divergence_iterations = divergence_iterations_;
+  const double steps = double(std::max<std::uint64_t>(1, this->steps_));
+  s.mean_pressure_iterations = density_iteration_sum_ / steps;
+  s.mean_divergence_iterations = divergence_iteration_sum_ / steps;
+  s.capped_steps = capped_steps_;
+}
+
+template class GpuDfsph<2>;
+template class GpuDfsph<3>;
+
+}  // namespace rtsph::gpu

@@ -1,0 +1,46 @@
+#pragma once
+// Divergence-Free SPH on the GPU: the CPU method's step (solvers/dfsph.h; Bender & Koschier
+// 2017, Algorithm 1) stage for stage, each stage a compute pass (shaders/gpu/dfsph_*.comp). The
+// solves stop on the same mean residual, read back (8 bytes) after each sweep. The sweeps walk
+// the grid's cell ranges and evaluate the kernel gradients again, where the CPU caches them per
+// listed pair: the GPU recomputes rather than streams.
+#include <string>
+
+#include "gpu/gpu_world.h"
+
+namespace rtsph::gpu {
+
+template <int D>
+class GpuDfsph final : public GpuWorld<D> {
+ public:
+  GpuDfsph(const SimSpec& spec, int threads);
+  void step() override;
+  std::string solver_failure() const override { return failure_; }
+  void state_loaded() override;
+
+ private:
+  double choose_time_step();
+  void factors(bool with_density);              // αᵢ (eq. 8), neighbour counts, wall sums; ρᵢ
+  /// Warm start, then Jacobi sweeps to the tolerance (Algorithms 2 and 3); returns the sweeps.
+  int solve(bool density, double dt, double tolerance, const char* name);
+  void apply_pressure(int source);              // vᵢ += Δt aᵢ from solve[].x (0) or .z (2)
+  double residual(bool density, double dt);     // this sweep's change; the mean error, read back
+  void bind_method() const;
+  void add_method_scalars(std::vector<StateField>& f) override;
+  void add_method_stats(SimStats& s) const override;
+
+  ComputeProgram nonpressure_, factors_, apply_, residual_, sweep_, totals_;
+  Buffer solve_, factor_buf_, wgrad_, warm_, warm_alt_;
+  // The CPU's method fields, in its order, so checkpoints resume on either backend: the
+  // factors and the warm start are device fields; pressure and last_step are the CPU's scratch.
+  AlignedArray<Real> factor_, neighbours_, pressure_, last_step_, warm_density_, warm_divergence_;
+  double relax_ = 0.5;      // Jacobi ω (dfsph::jacobi_relaxation)
+  double tiny_ = 0;         // 1/α below this: no neighbours to push
+  double density_bias_ = 0; // as the CPU's Dfsph::correct_density_error
+  int density_iterations_ = 0, divergence_iterations_ = 0;
+  double density_iteration_sum_ = 0, divergence_iteration_sum_ = 0;
+  std::uint64_t capped_steps_ = 0;
+  std::string failure_;
+};
+
+}  // namespace rtsph::gpu

@@ -75,8 +75,9 @@ inline void settles_to_hydrostatic(int dim, double width, double height, double 
   // The slosh decays from its peak. Averaged over the last 0.3 s, as the pressure is: the 2D PBF
   // tank's kinetic energy flickers from step to step (bursts of its bottom layer, 0.3 to 6 J in
   // samples 0.1 s apart). Its last step read 5.71 J against a peak of 11.1 J on an Intel host and
-  // below a quarter of the peak on the AMD hosts before it (-march=native: rsqrt and rcp differ by
-  // vendor), so a single step's figure was a coin toss; the average reads 1.1 J.
+  // below a quarter of the peak on the AMD hosts before it (-march=native; the rsqrt and rcp
+  // approximations are the vendor's), so a single step's figure was a coin toss; the average
+  // reads 1.1 J.
   EXPECT_LT(ke_late, 0.25 * ke_early);
   EXPECT_EQ(st.particles_put_back, 0u);
   // No particle leaves the fluid region: the column only compresses slightly.

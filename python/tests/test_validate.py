@@ -59,6 +59,10 @@ def test_known_failures_hold_the_failing_cases_where_they_are(tmp_path, monkeypa
     assert "now passes" in judge([res("wcsph", 0.05, True)], known)[0]
     assert "did not give a figure" in judge([res("wcsph", float("inf"))], known)[0]
     assert "did not give a figure" in judge([res("wcsph", float("nan"))], known)[0]
+    # An entry with a margin of its own (a figure known to swing between hosts) is held to that.
+    wide = {("c", "wcsph"): Known(0.2, "swings", margin=2.5)}
+    assert judge([res("wcsph", 0.45)], wide) == []
+    assert "at most 2.5× that" in judge([res("wcsph", 0.55)], wide)[0]
 
     # Through the command: a failure listed in known.py exits 0 with the flag, 1 without.
     monkeypatch.setitem(validate.CASES, "always_fails", _always_fails)

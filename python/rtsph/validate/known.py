@@ -5,7 +5,8 @@ Each entry is a case and method that fails its tolerance today, with the error t
 measured (CPU, 2026-11-25) and why it fails (docs/validation.md tells the whole story). With
 --known-failures the run exits 0 only when:
 - every failure is listed here, and its error is at most REGRESSION_MARGIN times the recorded
-  one (a finite one: "did not finish" is never within);
+  one (or the entry's own margin, where the figure is known to move that much between hosts; a
+  finite one: "did not finish" is never within);
 - every listed entry still fails: one that passes must leave the list, so that it is guarded as
   a pass from then on.
 So the passing cases are held to their tolerances, the failing ones are held where they are,
@@ -28,9 +29,13 @@ REGRESSION_MARGIN = 1.25
 class Known:
     measured: Optional[float]  # the quick error recorded; None where the figure is not a number
     why: str
+    # Where the figure moves by more than REGRESSION_MARGIN between hosts (the release build is
+    # -march=native, so round-off differs by CPU), the spread measured, with the hosts named in
+    # `why`.
+    margin: float = REGRESSION_MARGIN
 
     def ceiling(self) -> float:
-        return math.inf if self.measured is None else REGRESSION_MARGIN * self.measured
+        return math.inf if self.measured is None else self.margin * self.measured
 
 
 _DAM = "the residual column height drains more slowly than Martin & Moyce's Table 6 after τ ≈ 2 (the front passes)"
@@ -48,7 +53,9 @@ KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
     ("still_water_3d", "wcsph"): Known(1.201, _STILL),
     ("still_water_3d", "pbf"): Known(1.742, _STILL),
     ("still_water_3d", "dfsph"): Known(2.436, _STILL + "; DFSPH jitters against the floor"),
-    ("static_droplet_2d", "pbf"): Known(0.2906, "PBF's s_corr is a pair force its equivalent pressure does not count"),
+    ("static_droplet_2d", "pbf"): Known(0.2906, "PBF's s_corr is a pair force its equivalent pressure does not count; "
+                                              "σ calibrates near zero, so the figure swings with round-off: 0.29 on the "
+                                              "AMD hosts, 0.61 on an Intel one (2026-11-26), 2.31 on the GPU", margin=2.5),
     ("static_droplet_3d", "wcsph"): Known(0.4432, _ST3),
     ("static_droplet_3d", "pbf"): Known(0.6712, _ST3),
     ("static_droplet_3d", "dfsph"): Known(0.3914, _ST3),
@@ -82,5 +89,5 @@ def judge(results: Iterable, known: Dict[Tuple[str, str], Known] = KNOWN_FAILURE
                             "must still finish")
         elif r.error > k.ceiling():
             problems.append(f"{r.case} ({r.method}) got worse: {r.error:.4g} against the recorded "
-                            f"{k.measured:.4g} (at most {REGRESSION_MARGIN}× that)")
+                            f"{k.measured:.4g} (at most {k.margin}× that)")
     return problems

@@ -79,6 +79,7 @@ void GpuDfsph<D>::step() {
     this->kick_drift();                            // x += Δt v*, walls, put-back   (line 8)
     this->advance_scene_gpu(this->time_ + dt, dt); // obstacles, emitters
   }
+  for (Buffer* b : {&solve_, &wgrad_}) b->reserve(this->capacity() * sizeof(glsl::vec4));  // emitted
   {
     ScopedTimer timer(this->times_.neighbours_s);
     this->sort_particles();                        //                              (line 9)
@@ -95,7 +96,7 @@ void GpuDfsph<D>::step() {
     ScopedTimer timer(this->times_.forces_s);
     bind_method();
     totals_.set("mode", GLint(2));
-    totals_.dispatch(n);
+    totals_.dispatch(this->fluid_.size());  // emitters may have added particles since n
   }
   this->time_ += dt;
   this->dt_ = dt;

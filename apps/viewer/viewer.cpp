@@ -7,6 +7,7 @@
 #include <backends/imgui_impl_glfw.h>
 #include <backends/imgui_impl_opengl3.h>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <imgui.h>
 
 #include <algorithm>
@@ -98,8 +99,10 @@ SimSpec Viewer::for_viewer(const SimSpec& scene, const std::vector<std::string>&
   const RealtimeProfile p = realtime_profile(scene_spec_, threads_);
   profile_text_ = p.describe();
   SimSpec out = p.spec;
-  // The user's own overrides win over the profile's choices.
+  // The user's own overrides win over the profile's choices; the line says so, as a --set
+  // solver.method=dfsph runs DFSPH, not the profile's PBF.
   for (const auto& a : sets) apply_override(out, a);
+  if (!sets.empty()) profile_text_ += fmt::format("; then --set {}", fmt::join(sets, ", --set "));
   return out;
 }
 

@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstdio>
 
 #include "core/timer.h"
 #include "gpu/layout.h"
@@ -73,7 +72,7 @@ void GpuDfsph<D>::step() {
     if (!s.clamp_negative_pressure && (int(s.periodic) & all) == all && filled)
       density_bias_ = this->gpu_mean_density() - this->prm_.rho0;
   }
-  density_iterations_ = solve(true, dt, s.dfsph_max_density_error, "density");  // Alg. 3 (line 7)
+  counters_.density_iterations = solve(true, dt, s.dfsph_max_density_error, "density");  // Alg. 3 (line 7)
   {
     ScopedTimer timer(this->times_.integrate_s);
     this->kick_drift();                            // x += Δt v*, walls, put-back   (line 8)
@@ -90,7 +89,7 @@ void GpuDfsph<D>::step() {
     factors(true);                                 // ρᵢ, αᵢ                 (lines 10-11)
     this->measure_density_error_gpu();
   }
-  divergence_iterations_ = solve(false, dt, s.dfsph_max_divergence_error, "divergence");  // Alg. 2
+  counters_.divergence_iterations = solve(false, dt, s.dfsph_max_divergence_error, "divergence");  // Alg. 2
   {
     // The step's pressure for output, p = ρ²(P_density + P_divergence).
     ScopedTimer timer(this->times_.forces_s);
@@ -101,9 +100,7 @@ void GpuDfsph<D>::step() {
   this->time_ += dt;
   this->dt_ = dt;
   ++this->steps_;
-  capped_steps_ += !failure_.empty();
-  density_iteration_sum_ += density_iterations_;
-  divergence_iteration_sum_ += divergence_iterations_;
+  counters_.end_step(!failure_.empty());
   this->mark_stale();
 }
 
@@ -196,14 +193,8 @@ int GpuDfsph<D>::solve(bool density, double dt, double tolerance, const char* na
   totals_.set("component", GLint(density ? 0 : 1));
   glProgramUniform1d(totals, glGetUniformLocation(totals, "scale"), 1.0 / to_p);
   totals_.dispatch(n);
-  if (err > tolerance && failure_.empty()) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "DFSPH %s solve did not converge in %d iterations at t = %.4g s (mean error "
-                  "%.3g%%, tolerance %.3g%%)",
-                  name, it, this->time_ + dt, 100 * err, 100 * tolerance);
-    failure_ = buf;
-  }
+  if (err > tolerance && failure_.empty())
+    failure_ = dfsph::not_converged(name, it, this->time_ + dt, err, tolerance);
   return it;
 }
 
@@ -220,22 +211,12 @@ void GpuDfsph<D>::state_loaded() {
 
 template <int D>
 void GpuDfsph<D>::add_method_scalars(std::vector<StateField>& f) {
-  f.push_back({"dfsph.density_iterations", &density_iterations_, sizeof density_iterations_});
-  f.push_back({"dfsph.divergence_iterations", &divergence_iterations_, sizeof divergence_iterations_});
-  f.push_back({"dfsph.density_iteration_sum", &density_iteration_sum_, sizeof density_iteration_sum_});
-  f.push_back({"dfsph.divergence_iteration_sum", &divergence_iteration_sum_,
-               sizeof divergence_iteration_sum_});
-  f.push_back({"dfsph.capped_steps", &capped_steps_, sizeof capped_steps_});
+  counters_.add_scalars(f);
 }
 
 template <int D>
 void GpuDfsph<D>::add_method_stats(SimStats& s) const {
-  s.pressure_iterations = density_iterations_;
-  s.divergence_iterations = divergence_iterations_;
-  const double steps = double(std::max<std::uint64_t>(1, this->steps_));
-  s.mean_pressure_iterations = density_iteration_sum_ / steps;
-  s.mean_divergence_iterations = divergence_iteration_sum_ / steps;
-  s.capped_steps = capped_steps_;
+  counters_.add_stats(s, this->steps_);
 }
 
 template class GpuDfsph<2>;

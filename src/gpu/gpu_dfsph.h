@@ -7,6 +7,7 @@
 #include <string>
 
 #include "gpu/gpu_world.h"
+#include "solvers/dfsph.h"
 
 namespace rtsph::gpu {
 
@@ -37,9 +38,7 @@ class GpuDfsph final : public GpuWorld<D> {
   double relax_ = 0.5;      // Jacobi ω (dfsph::jacobi_relaxation)
   double tiny_ = 0;         // 1/α below this: no neighbours to push
   double density_bias_ = 0; // as the CPU's Dfsph::correct_density_error
-  int density_iterations_ = 0, divergence_iterations_ = 0;
-  double density_iteration_sum_ = 0, divergence_iteration_sum_ = 0;
-  std::uint64_t capped_steps_ = 0;
+  dfsph::Counters counters_;  // saved as the CPU's are
   std::string failure_;
 };
 

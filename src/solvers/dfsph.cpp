@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 #include "core/timer.h"
 
@@ -64,9 +65,7 @@ void Dfsph<D>::step() {
   this->time_ += dt;
   this->dt_ = dt;
   ++this->steps_;
-  capped_steps_ += !failure_.empty();
-  density_iteration_sum_ += density_iterations_;
-  divergence_iteration_sum_ += divergence_iterations_;
+  counters_.end_step(!failure_.empty());
 }
 
 // Δt = cfl·d/max(|v|max, √(|g|H)) (2017, eq. 13 with d the particle spacing, and the head
@@ -124,22 +123,45 @@ double Dfsph<D>::choose_time_step() const {
 
 template <int D>
 void Dfsph<D>::add_method_scalars(std::vector<StateField>& f) {
-  f.push_back({"dfsph.density_iterations", &density_iterations_, sizeof density_iterations_});
-  f.push_back({"dfsph.divergence_iterations", &divergence_iterations_, sizeof divergence_iterations_});
-  f.push_back({"dfsph.density_iteration_sum", &density_iteration_sum_, sizeof density_iteration_sum_});
-  f.push_back({"dfsph.divergence_iteration_sum", &divergence_iteration_sum_,
-               sizeof divergence_iteration_sum_});
-  f.push_back({"dfsph.capped_steps", &capped_steps_, sizeof capped_steps_});
+  counters_.add_scalars(f);
 }
 
 template <int D>
 void Dfsph<D>::add_method_stats(SimStats& s) const {
-  s.pressure_iterations = density_iterations_;
-  s.divergence_iterations = divergence_iterations_;
-  const double steps = double(std::max<std::uint64_t>(1, this->steps_));
-  s.mean_pressure_iterations = density_iteration_sum_ / steps;
-  s.mean_divergence_iterations = divergence_iteration_sum_ / steps;
-  s.capped_steps = capped_steps_;
+  counters_.add_stats(s, this->steps_);
+}
+
+void dfsph::Counters::end_step(bool capped) {
+  capped_steps += capped;
+  density_iteration_sum += density_iterations;
+  divergence_iteration_sum += divergence_iterations;
+}
+
+void dfsph::Counters::add_scalars(std::vector<StateField>& f) {
+  f.push_back({"dfsph.density_iterations", &density_iterations, sizeof density_iterations});
+  f.push_back({"dfsph.divergence_iterations", &divergence_iterations, sizeof divergence_iterations});
+  f.push_back({"dfsph.density_iteration_sum", &density_iteration_sum, sizeof density_iteration_sum});
+  f.push_back({"dfsph.divergence_iteration_sum", &divergence_iteration_sum, sizeof divergence_iteration_sum});
+  f.push_back({"dfsph.capped_steps", &capped_steps, sizeof capped_steps});
+}
+
+void dfsph::Counters::add_stats(SimStats& s, std::uint64_t steps) const {
+  s.pressure_iterations = density_iterations;
+  s.divergence_iterations = divergence_iterations;
+  const double n = double(std::max<std::uint64_t>(1, steps));
+  s.mean_pressure_iterations = density_iteration_sum / n;
+  s.mean_divergence_iterations = divergence_iteration_sum / n;
+  s.capped_steps = capped_steps;
+}
+
+std::string dfsph::not_converged(const char* solve, int iterations, double t, double error,
+                                 double tolerance) {
+  char buf[200];
+  std::snprintf(buf, sizeof buf,
+                "DFSPH %s solve did not converge in %d iterations at t = %.4g s (mean error "
+                "%.3g%%, tolerance %.3g%%)",
+                solve, iterations, t, 100 * error, 100 * tolerance);
+  return buf;
 }
 
 template class Dfsph<2>;

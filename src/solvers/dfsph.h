@@ -2,7 +2,9 @@
 // Divergence-Free SPH (Bender & Koschier 2015, 2017): two implicit pressure solves per step,
 // one that keeps the density at ρ0 and one that keeps the velocity field divergence-free, so
 // the step is limited by the flow speed (CFL) instead of the speed of sound.
+#include <cstdint>
 #include <string>
+#include <vector>
 
 #include "solvers/fluid_world.h"
 
@@ -27,6 +29,17 @@ double chebyshev_weight(int it, double rho, double omega);
 /// by the force and viscous limits and max_dt; the fixed step in fixed mode.
 double time_step(const SimSpec& s, const ResolvedParams& prm, double v2max, double a2max,
                  double head, double viscous_limit);
+/// The solves' counters both backends keep, save in checkpoints (under the same names) and report.
+struct Counters {
+  int density_iterations = 0, divergence_iterations = 0;    // of the last step
+  double density_iteration_sum = 0, divergence_iteration_sum = 0;
+  std::uint64_t capped_steps = 0;  // steps whose density or divergence solve hit its cap
+  void end_step(bool capped);      // adds the last step's counts to the sums
+  void add_scalars(std::vector<StateField>& f);
+  void add_stats(SimStats& s, std::uint64_t steps) const;
+};
+/// The instability guard's line for a solve that stopped at its cap above its tolerance.
+std::string not_converged(const char* solve, int iterations, double t, double error, double tolerance);
 }  // namespace dfsph
 
 template <int D>
@@ -75,9 +88,7 @@ class Dfsph final : public FluidWorld<D> {
   // no velocity field can remove (correct_density_error). 0 otherwise.
   double density_bias_ = 0;
   double relax_ = 0.5;               // Jacobi ω, set once from the kernel (jacobi_relaxation)
-  int density_iterations_ = 0, divergence_iterations_ = 0;
-  double density_iteration_sum_ = 0, divergence_iteration_sum_ = 0;
-  std::uint64_t capped_steps_ = 0;   // steps whose density or divergence solve hit its cap
+  dfsph::Counters counters_;
   std::string failure_;
 };
 

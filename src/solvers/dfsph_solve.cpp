@@ -322,14 +322,8 @@ int Dfsph<D>::solve(double dt, AlignedArray<Real>& total, double tolerance, cons
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) total[i] = Real(total[i] / to_p);
   });
-  if (err > tolerance && failure_.empty()) {
-    char buf[200];
-    std::snprintf(buf, sizeof buf,
-                  "DFSPH %s solve did not converge in %d iterations at t = %.4g s (mean error "
-                  "%.3g%%, tolerance %.3g%%)",
-                  name, it, this->time_ + dt, 100 * err, 100 * tolerance);
-    failure_ = buf;
-  }
+  if (err > tolerance && failure_.empty())
+    failure_ = dfsph::not_converged(name, it, this->time_ + dt, err, tolerance);
   return it;
 }
 
@@ -356,13 +350,13 @@ double Dfsph<D>::correct_density_error(double dt) {
     });
     density_bias_ = sum / double(n) - prm_.rho0;
   }
-  density_iterations_ = solve<true>(dt, warm_density_, spec_.dfsph_max_density_error, "density");
-  return density_iterations_;
+  counters_.density_iterations = solve<true>(dt, warm_density_, spec_.dfsph_max_density_error, "density");
+  return counters_.density_iterations;
 }
 
 template <int D>
 double Dfsph<D>::correct_divergence_error(double dt) {
-  divergence_iterations_ =
+  counters_.divergence_iterations =
       solve<false>(dt, warm_divergence_, spec_.dfsph_max_divergence_error, "divergence");
   // Pressure for output: both solves act as Δv = Δt·(−Σ m(Pᵢ + Pⱼ)∇W), so the step's pressure is
   // p = ρ²(P_density + P_divergence) (κ = Pρ), from the totals stored as P·Δt² and P·Δt.
@@ -373,7 +367,7 @@ double Dfsph<D>::correct_divergence_error(double dt) {
       fluid_.p[i] = Real(P * double(fluid_.rho[i]) * fluid_.rho[i]);
     }
   });
-  return divergence_iterations_;
+  return counters_.divergence_iterations;
 }
 
 #define RTSPH_INSTANTIATE(D)                                  \

@@ -137,6 +137,7 @@ class GpuWorld : public FluidWorld<D> {
   ComputeProgram reduce_[kReduceModes], reduce_final_[kReduceModes];
   /// Runs reduction `mode` of reduce.comp into stats slot `slot` (two passes, fixed order).
   void reduce(int mode, unsigned slot) const;
+  double reduce_first(int mode, unsigned slot, double divide);
   GLuint params_ubo_ = 0;
   Buffer bpos_, bvel_, bnormal_, blocal_, bpress_, bpos_alt_, bvel_alt_, bnormal_alt_, blocal_alt_;
   Buffer obstacles_buf_, partials_, stats_;

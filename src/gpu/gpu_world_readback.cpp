@@ -63,34 +63,30 @@ double GpuWorld<D>::mean_compression_now() {
   return n ? r.y / double(n) : 0.0;
 }
 
+// The first component of reduction `mode`'s result, read back (8 bytes), divided by `divide`.
+template <int D>
+double GpuWorld<D>::reduce_first(int mode, unsigned slot, double divide) {
+  if (this->fluid_.size() == 0) return 0.0;
+  reduce(mode, slot);
+  double x = 0;
+  stats_.download(&x, sizeof x, slot * sizeof(DVec4));
+  return x / divide;
+}
+
 template <int D>
 double GpuWorld<D>::gpu_head() {
   if (this->fluid_.size() == 0) return 0.0;
   reduce(5, kHead);
   DVec4 r{};
   stats_.download(&r, sizeof r, kHead * sizeof(DVec4));
-  return r.x + r.y;
+  return r.x + r.y;  // max(-g.x) - min(-g.x)
 }
 
 template <int D>
-double GpuWorld<D>::gpu_mean_solve_error() {
-  const std::size_t n = this->fluid_.size();
-  if (n == 0) return 0.0;
-  reduce(6, kResidual);
-  DVec4 r{};
-  stats_.download(&r, sizeof r, kResidual * sizeof(DVec4));
-  return r.x / double(n);
-}
+double GpuWorld<D>::gpu_mean_solve_error() { return reduce_first(6, kResidual, double(this->fluid_.size())); }
 
 template <int D>
-double GpuWorld<D>::gpu_mean_density() {
-  const std::size_t n = this->fluid_.size();
-  if (n == 0) return 0.0;
-  reduce(7, kResidual);
-  DVec4 r{};
-  stats_.download(&r, sizeof r, kResidual * sizeof(DVec4));
-  return r.x / double(n);
-}
+double GpuWorld<D>::gpu_mean_density() { return reduce_first(7, kResidual, double(this->fluid_.size())); }
 
 template <int D>
 void GpuWorld<D>::measure_energies(SimStats& s) const {
@@ -301,6 +297,7 @@ void GpuWorld<D>::overwrite_fluid(const float* const* x, const float* const* v) 
   template void GpuWorld<D>::measure_density_error_gpu();                                \
   template double GpuWorld<D>::mean_compression_now();                                   \
   template double GpuWorld<D>::gpu_head();                                               \
+  template double GpuWorld<D>::reduce_first(int, unsigned, double);                      \
   template double GpuWorld<D>::gpu_mean_solve_error();                                   \
   template double GpuWorld<D>::gpu_mean_density();                                       \
   template void GpuWorld<D>::measure_energies(SimStats&) const;                          \

@@ -63,15 +63,7 @@ void GpuDfsph<D>::step() {
   }
   // Where the fluid fills a periodic box with two-sided pressure, the density solve targets the
   // mean kernel sum (the CPU's Dfsph::correct_density_error says why).
-  density_bias_ = 0;
-  {
-    const int all = (1 << D) - 1;
-    double volume = 1;
-    for (int k = 0; k < D; ++k) volume *= s.domain_max[k] - s.domain_min[k];
-    const bool filled = double(n) * std::pow(s.spacing, D) >= 0.98 * volume;
-    if (!s.clamp_negative_pressure && (int(s.periodic) & all) == all && filled)
-      density_bias_ = this->gpu_mean_density() - this->prm_.rho0;
-  }
+  density_bias_ = dfsph::targets_mean_density<D>(s, n) ? this->gpu_mean_density() - this->prm_.rho0 : 0.0;
   counters_.density_iterations = solve(true, dt, s.dfsph_max_density_error, "density");  // Alg. 3 (line 7)
   {
     ScopedTimer timer(this->times_.integrate_s);

@@ -22,6 +22,10 @@ inline constexpr float kMinNeighbours = D == 3 ? 20.0f : 7.0f;
 /// The Jacobi sweeps' relaxation ω for the scene's kernel, from the rest lattice.
 template <int D>
 double jacobi_relaxation(const SimSpec& s, const ResolvedParams& prm);
+/// Whether the density solve targets the fluid's mean kernel sum instead of ρ0: two-sided
+/// pressure in a periodic box the fluid fills (Dfsph::correct_density_error says why).
+template <int D>
+bool targets_mean_density(const SimSpec& s, std::size_t fluid_count);
 /// The Chebyshev weight of sweep `it` (0-based) of a clamped density solve with spectral radius
 /// rho, from the previous sweep's `omega` (1 before the third sweep and for rho = 0).
 double chebyshev_weight(int it, double rho, double omega);

@@ -335,14 +335,19 @@ int Dfsph<D>::solve(double dt, AlignedArray<Real>& total, double tolerance, cons
 // destroy the flow (Taylor–Green, 80², with the transport velocity: 100 sweeps in most steps and
 // the decay rate 36% off). So there the target is the mean: r = ρ*ᵢ − ρ0 − (ρ̄ − ρ0).
 template <int D>
+bool dfsph::targets_mean_density(const SimSpec& s, std::size_t fluid_count) {
+  const int all = (1 << D) - 1;
+  double volume = 1;
+  for (int k = 0; k < D; ++k) volume *= s.domain_max[k] - s.domain_min[k];
+  const bool filled = double(fluid_count) * std::pow(s.spacing, D) >= 0.98 * volume;  // each holds s^D
+  return !s.clamp_negative_pressure && (int(s.periodic) & all) == all && filled;
+}
+
+template <int D>
 double Dfsph<D>::correct_density_error(double dt) {
   density_bias_ = 0;
   const std::size_t n = fluid_.size();
-  const int all = (1 << D) - 1;
-  double volume = 1;
-  for (int k = 0; k < D; ++k) volume *= spec_.domain_max[k] - spec_.domain_min[k];
-  const bool filled = double(n) * std::pow(spec_.spacing, D) >= 0.98 * volume;  // each holds s^D
-  if (!spec_.clamp_negative_pressure && (int(spec_.periodic) & all) == all && filled) {
+  if (dfsph::targets_mean_density<D>(spec_, n)) {
     const double sum = pool_.parallel_reduce(n, 0.0, [&](std::size_t b, std::size_t e) {
       double acc = 0;
       for (std::size_t i = b; i < e; ++i) acc += fluid_.rho[i];
@@ -372,6 +377,7 @@ double Dfsph<D>::correct_divergence_error(double dt) {
 
 #define RTSPH_INSTANTIATE(D)                                  \
   template double dfsph::jacobi_relaxation<D>(const SimSpec&, const ResolvedParams&); \
+  template bool dfsph::targets_mean_density<D>(const SimSpec&, std::size_t);          \
   template void Dfsph<D>::compute_factors(bool);              \
   template void Dfsph<D>::state_loaded();                     \
   template double Dfsph<D>::correct_density_error(double);    \

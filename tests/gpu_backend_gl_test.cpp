@@ -107,7 +107,11 @@ TEST_P(GpuMethods, DamBreakFollowsTheCpuFor200Steps) {
     const double fc = front(*cpu), fg = front(*gpu);
     std::printf("%s %dD after 200 steps: t = %.4f / %.4f s, front %.5f / %.5f m, max density error %.4f / %.4f (CPU / GPU)\n",
                 GetParam(), dim, cpu->time(), gpu->time(), fc, fg, max_err_cpu, max_err_gpu);
-    EXPECT_NEAR(fg, fc, 0.01 * fc);
+    // PBF's Jacobi iterations amplify round-off, and the front is one particle, the foremost:
+    // on one Intel host the 2D front read 0.36416 / 0.36440 m (CPU / GPU) in the release build and
+    // 0.36870 / 0.36266 m in the ASan build, both backends moving with the build's flags (1.6%
+    // apart there). So PBF's front is held to 2%, WCSPH's and DFSPH's to 1%.
+    EXPECT_NEAR(fg, fc, (pbf ? 0.02 : 0.01) * fc);
     EXPECT_NEAR(max_err_gpu, max_err_cpu, 0.005);
     EXPECT_NEAR(gpu->time(), cpu->time(), 0.01 * cpu->time());
     EXPECT_EQ(gpu->stats().particles_put_back, cpu->stats().particles_put_back);

@@ -32,6 +32,7 @@ layout(std140, binding = RTSPH_U_PARAMS) uniform ParamsBlock { SphParams P; };
 #define BUFFER_DFSPH_SOLVE layout(std430, binding = RTSPH_B_DFSPH_SOLVE) buffer DfsphSolveBuf { vec4 solve[]; };
 #define BUFFER_DFSPH_FACTOR layout(std430, binding = RTSPH_B_DFSPH_FACTOR) buffer DfsphFactorBuf { vec4 factor[]; };
 #define BUFFER_DFSPH_WARM layout(std430, binding = RTSPH_B_DFSPH_WARM) buffer DfsphWarmBuf { vec4 warm[]; };
+#define BUFFER_STATS layout(std430, binding = RTSPH_B_STATS) buffer StatsBuf { dvec4 stats[]; };
 #define BUFFER_TDV layout(std430, binding = RTSPH_B_TDV) buffer TdvBuf { vec4 tdv[]; };
 
 // ---- Kernels: the CPU's formulas (core/kernels.h) with the constants its objects hold.

@@ -1,12 +1,13 @@
 // DFSPH's pressure kick (the CPU's Dfsph::apply_pressure): v_i += dt a_i with
 //   a_i = -sum_j m (P_i + P_j) grad W_ij - 2 P_i sum_b Psi_b grad W_ib     (walls mirror P_i)
 // P_i = kappa_i/rho_i from solve[i].x (a sweep's change) or solve[i].z (the warm start's total).
-// Positions do not move during the solves, so the walk is the factors pass's.
-BUFFER_POS BUFFER_VEL BUFFER_FKEY BUFFER_FSTART BUFFER_WGRAD BUFFER_DFSPH_SOLVE
+// Positions do not move during the solves, so the walk is the factors pass's. Returns at once
+// when the solve's gate is closed (dfsph_gate.comp).
+BUFFER_POS BUFFER_VEL BUFFER_FKEY BUFFER_FSTART BUFFER_WGRAD BUFFER_DFSPH_SOLVE BUFFER_STATS
 uniform int source;  // the component of solve[] that holds P: 0 (x) or 2 (z)
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= P.fluid_count) return;
+  if (i >= P.fluid_count || stats[RTSPH_STAT_GATE].x == 0.0lf) return;
   vec3 xi = pos[i].xyz;
   uint key = fkey[i];
   float Pi = solve[i][source];

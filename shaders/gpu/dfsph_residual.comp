@@ -6,13 +6,14 @@
 // projected to P >= 0 when negative pressure is clamped; solve[i].x gets P - total. solve[i].w
 // gets the particle's share of the mean relative error: |r| where pressure acts, compression
 // elsewhere (clamped), |r| otherwise; zero for a thin neighbourhood in the divergence solve.
-BUFFER_POS BUFFER_VEL BUFFER_DENS BUFFER_FKEY BUFFER_FSTART BUFFER_WGRAD BUFFER_DFSPH_FACTOR BUFFER_DFSPH_SOLVE
+// Returns at once when the solve's gate is closed (dfsph_gate.comp).
+BUFFER_POS BUFFER_VEL BUFFER_DENS BUFFER_FKEY BUFFER_FSTART BUFFER_WGRAD BUFFER_DFSPH_FACTOR BUFFER_DFSPH_SOLVE BUFFER_STATS
 uniform int density;          // 1: the density solve, 0: the divergence solve
 uniform double relax, to_p, bias, error_scale;  // omega; 1/dt^2 or 1/dt; kg/m^3; 1/rho0 or dt/rho0
 uniform float min_neighbours;
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= P.fluid_count) return;
+  if (i >= P.fluid_count || stats[RTSPH_STAT_GATE].x == 0.0lf) return;
   vec3 xi = pos[i].xyz, vi = vel[i].xyz;
   uint key = fkey[i];
   float rf = 0.0;

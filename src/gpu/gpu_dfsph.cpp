@@ -22,6 +22,7 @@ GpuDfsph<D>::GpuDfsph(const SimSpec& spec, int threads) : GpuWorld<D>(spec, thre
   residual_ = ComputeProgram("dfsph_residual.comp", d);
   sweep_ = ComputeProgram("dfsph_sweep.comp", d);
   totals_ = ComputeProgram("dfsph_totals.comp", d);
+  gate_ = ComputeProgram("dfsph_gate.comp", d);
   relax_ = dfsph::jacobi_relaxation<D>(this->spec_, this->prm_);
   tiny_ = 1e-6 * this->lattice_gradient_sum();
   // The CPU's method fields, in the CPU's order (Dfsph's constructor): a checkpoint lists them.
@@ -132,7 +133,7 @@ void GpuDfsph<D>::apply_pressure(int source) {
 }
 
 template <int D>
-double GpuDfsph<D>::residual(bool density, double dt) {
+void GpuDfsph<D>::residual(bool density, double dt) {
   bind_method();
   const GLuint prog = residual_.id();
   residual_.set("density", GLint(density ? 1 : 0));
@@ -144,12 +145,36 @@ double GpuDfsph<D>::residual(bool density, double dt) {
                      (density ? 1.0 : dt) / this->prm_.rho0);
   residual_.dispatch(this->fluid_.size());
   solve_.bind(RTSPH_B_DFSPH_SOLVE);
-  return this->gpu_mean_solve_error();
+  this->reduce_solve_error();
 }
+
+template <int D>
+void GpuDfsph<D>::gate(int mode, int least, int most, double threshold) {
+  this->bind_all();
+  gate_.set("mode", GLint(mode));
+  gate_.set("least", GLint(least));
+  gate_.set("most", GLint(most));
+  glProgramUniform1d(gate_.id(), glGetUniformLocation(gate_.id(), "threshold"), threshold);
+  gate_.dispatch_groups(1);
+}
+
+namespace {
+// The largest sum whose mean, sum / n in double, is still within the tolerance: the device then
+// tests sum > threshold, which decides exactly as the host's mean > tolerance did (the rounded
+// quotient grows with the sum), without a division on the device.
+double sum_threshold(double tolerance, std::size_t count) {
+  const double n = double(count);
+  double t = tolerance * n;
+  while (t / n > tolerance) t = std::nextafter(t, -HUGE_VAL);
+  while (std::nextafter(t, HUGE_VAL) / n <= tolerance) t = std::nextafter(t, HUGE_VAL);
+  return t;
+}
+}  // namespace
 
 // The CPU's Dfsph::solve: the warm start (a share of the last step's total, stored independent
 // of Δt), then relaxed Jacobi sweeps, Chebyshev-accelerated in clamped density solves, until the
-// mean error reaches the tolerance (at least two sweeps for density, one for divergence).
+// mean error reaches the tolerance (at least two sweeps for density, one for divergence). The
+// stopping test runs on the device; the sweeps queued after it stops return at once.
 template <int D>
 int GpuDfsph<D>::solve(bool density, double dt, double tolerance, const char* name) {
   ScopedTimer timer(density ? this->times_.density_s : this->times_.forces_s);
@@ -157,29 +182,42 @@ int GpuDfsph<D>::solve(bool density, double dt, double tolerance, const char* na
   const std::size_t n = this->fluid_.size();
   const double to_p = density ? 1.0 / (dt * dt) : 1.0 / dt;
   const GLuint totals = totals_.id();
+  const int max_iterations = std::max(1, s.dfsph_max_iterations);
+  const int min_iterations = density ? 2 : 1;
+  const double threshold = sum_threshold(tolerance, n);
+  gate(0);  // open
   bind_method();
   totals_.set("mode", GLint(0));
   totals_.set("component", GLint(density ? 0 : 1));
   glProgramUniform1d(totals, glGetUniformLocation(totals, "scale"), to_p * dfsph::kWarm);
   totals_.dispatch(n);
   apply_pressure(2);
-  const int max_iterations = std::max(1, s.dfsph_max_iterations);
-  const int min_iterations = density ? 2 : 1;
-  int it = 0;
-  double err = residual(density, dt);
+  residual(density, dt);
+  gate(1, min_iterations, max_iterations, threshold);
   const double rho = density && s.clamp_negative_pressure ? s.dfsph_chebyshev : 0.0;
   double omega = 1.0;
-  while ((err > tolerance || it < min_iterations) && it < max_iterations) {
-    omega = dfsph::chebyshev_weight(it, rho, omega);
-    bind_method();
-    sweep_.set("w", Real(omega));
-    sweep_.set("w1", Real(omega - 1.0));
-    sweep_.set("first", GLint(it == 0 ? 1 : 0));
-    sweep_.dispatch(n);
-    apply_pressure(0);
-    err = residual(density, dt);
-    ++it;
+  int queued = 0;
+  int batch = std::clamp(last_sweeps_[density], min_iterations, max_iterations);
+  glsl::dvec4 g{};
+  for (;;) {
+    for (int k = 0; k < batch && queued < max_iterations; ++k, ++queued) {
+      omega = dfsph::chebyshev_weight(queued, rho, omega);  // the sweep's, should it run
+      bind_method();
+      sweep_.set("w", Real(omega));
+      sweep_.set("w1", Real(omega - 1.0));
+      sweep_.set("first", GLint(queued == 0 ? 1 : 0));
+      sweep_.dispatch(n);
+      apply_pressure(0);
+      residual(density, dt);
+      gate(2, min_iterations, max_iterations, threshold);
+    }
+    g = this->read_stat(RTSPH_STAT_GATE);  // 32 bytes: the one wait per batch
+    if (g.x == 0.0 || queued >= max_iterations) break;
+    batch = 2;
   }
+  const int it = int(g.y);
+  const double err = g.z / double(n);
+  last_sweeps_[density] = it;
   bind_method();
   totals_.set("mode", GLint(1));
   totals_.set("component", GLint(density ? 0 : 1));

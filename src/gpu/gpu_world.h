@@ -14,6 +14,7 @@
 #include <vector>
 
 #include "gpu/gl_compute.h"
+#include "gpu/layout.h"
 #include "gpu/sort.h"
 #include "solvers/fluid_world.h"
 
@@ -61,9 +62,11 @@ class GpuWorld : public FluidWorld<D> {
   double mean_compression_now();
   /// |g| times the fluid's extent along gravity (DFSPH's head speed squared), read back.
   double gpu_head();
-  /// The mean of the solve buffer's error column (RTSPH_B_DFSPH_SOLVE, bound by the caller):
-  /// DFSPH's stopping check, 8 bytes read back.
-  double gpu_mean_solve_error();
+  /// The sum of the solve buffer's error column (RTSPH_B_DFSPH_SOLVE, bound by the caller) into
+  /// stats slot RTSPH_STAT_RESIDUAL, on the device: DFSPH's stopping test reads it there.
+  void reduce_solve_error() const;
+  /// One slot of the stats buffer, read back (32 bytes).
+  glsl::dvec4 read_stat(unsigned slot) const;
   /// The mean density over the fluid, read back.
   double gpu_mean_density();
   void boundary_pressure();                   // Adami 2012's wall pressure

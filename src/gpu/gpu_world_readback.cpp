@@ -83,7 +83,16 @@ double GpuWorld<D>::gpu_head() {
 }
 
 template <int D>
-double GpuWorld<D>::gpu_mean_solve_error() { return reduce_first(6, kResidual, double(this->fluid_.size())); }
+void GpuWorld<D>::reduce_solve_error() const {
+  if (this->fluid_.size() > 0) reduce(6, kResidual);
+}
+
+template <int D>
+glsl::dvec4 GpuWorld<D>::read_stat(unsigned slot) const {
+  glsl::dvec4 r{};
+  stats_.download(&r, sizeof r, slot * sizeof(DVec4));
+  return r;
+}
 
 template <int D>
 double GpuWorld<D>::gpu_mean_density() { return reduce_first(7, kResidual, double(this->fluid_.size())); }
@@ -298,7 +307,8 @@ void GpuWorld<D>::overwrite_fluid(const float* const* x, const float* const* v) 
   template double GpuWorld<D>::mean_compression_now();                                   \
   template double GpuWorld<D>::gpu_head();                                               \
   template double GpuWorld<D>::reduce_first(int, unsigned, double);                      \
-  template double GpuWorld<D>::gpu_mean_solve_error();                                   \
+  template void GpuWorld<D>::reduce_solve_error() const;                                 \
+  template glsl::dvec4 GpuWorld<D>::read_stat(unsigned) const;                           \
   template double GpuWorld<D>::gpu_mean_density();                                       \
   template void GpuWorld<D>::measure_energies(SimStats&) const;                          \
   template std::optional<DeviceParticles> GpuWorld<D>::device_particles() const;         \

@@ -55,6 +55,10 @@ struct alignas(32) dvec4 { double x, y, z, w; };
 #define RTSPH_B_GATHER_OUT3 29
 #define RTSPH_B_BKEY 30      // uint: cell key of each boundary sample (sorted)
 #define RTSPH_B_STATS 31     // dvec4 results of the reductions (gpu_world_detail.h, StatSlot)
+// Stats slots a pass reads on the device (the others are the host's; gpu_world_detail.h):
+// DFSPH's residual sum (reduce.comp mode 6), and the gate of its stopping test (dfsph_gate.comp).
+#define RTSPH_STAT_RESIDUAL 7
+#define RTSPH_STAT_GATE 8
 #define RTSPH_BINDINGS 32
 #define RTSPH_U_PARAMS 0     // uniform block binding of SphParams
 // PBF's own arrays borrow the gather bindings (the sort rebinds those before each use; no PBF

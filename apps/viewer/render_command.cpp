@@ -58,6 +58,28 @@ void print_pass_times(const render::SurfacePassTimes& t, std::size_t splats) {
                t.frames, 1e3 * t.scene_s / n, 1e3 * t.splat_s / n, 1e3 * t.smooth_s / n,
                1e3 * t.normal_s / n, 1e3 * t.shade_s / n, splats);
 }
+// `--time-draw N`: the last frame drawn N more times from what the renderer holds (the GPU
+// backend's own buffers, or the last upload), each draw bounded by glFinish, no pixels read
+// back and no step taken: the drawing's own rate at this image size, which bounds the viewer's.
+void time_draws(render::Renderer& renderer, const render::OffscreenTarget& target, const render::Camera& cam,
+                int width, int height, const render::RenderSettings& settings, int n) {
+  target.bind();
+  renderer.draw(cam, width, height, settings);  // warm: programs, buffers, textures
+  glFinish();
+  std::vector<double> ms(std::size_t(n), 0.0);
+  for (double& m : ms) {
+    target.bind();
+    const auto a = std::chrono::steady_clock::now();
+    renderer.draw(cam, width, height, settings);
+    glFinish();
+    m = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - a).count();
+  }
+  std::sort(ms.begin(), ms.end());
+  const double median = ms[ms.size() / 2];
+  std::fprintf(stderr, "rtsph render: the last frame drawn %d times at %dx%d: median %.3f ms (%.1f frames/s), "
+               "fastest %.3f ms, slowest %.3f ms\n", n, width, height, median, 1000.0 / median, ms.front(), ms.back());
+}
+
 }  // namespace
 
 int render_scene(const RenderJob& job) {
@@ -174,6 +196,7 @@ int render_scene(const RenderJob& job) {
     std::fprintf(stderr, "rtsph render: %d frame%s, simulated 0..%.3f s in %.1f s (simulation %.1f s, drawing %.1f s)\n",
                  frames, frames == 1 ? "" : "s", t_end, wall, sim_s, draw_s);
   if (job.time_passes) print_pass_times(renderer.surface_times(), renderer.splat_count());
+  if (job.time_draw > 0) time_draws(renderer, target, cam, width, height, settings, job.time_draw);
   std::printf("%s\n", single_png ? job.out.c_str() : sink->path().c_str());
   return 0;
 }
@@ -198,6 +221,10 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("--set", o->sets, "Override a scene parameter, e.g. --set fluid.spacing=0.04");
   cmd->add_flag("--quiet", o->quiet, "No progress on the terminal");
   cmd->add_flag("--time-passes", o->time_passes, "Print the CPU time of each surface pass (glFinish between passes)");
+  cmd->add_option("--time-draw", o->time_draw, "Then draw the last frame N more times, without stepping or "
+                                               "reading pixels back, and print the median draw time (the viewer's "
+                                               "frame rate at this size, drawing alone)")
+      ->check(CLI::Range(1, 100000));
   cmd->callback([o, cmd, &exit_code] {
     o->style_given = cmd->count("--style") > 0;
     o->color_given = cmd->count("--color") > 0;

@@ -22,6 +22,7 @@ struct RenderJob {
   std::vector<std::string> sets;
   bool quiet = false;
   bool time_passes = false;  // print the surface passes' CPU time
+  int time_draw = 0;         // redraw the last frame this many times and print the draw rate
   // Given on the command line: a scene's own defaults (gas: particles by log density) yield.
   bool style_given = false, color_given = false;
 

@@ -33,6 +33,14 @@ check grep -q "surface passes" "$work/passes"
   --quiet 2>"$work/passes2" >/dev/null
 check test $? -eq 0
 check grep -q "2D surface passes over 2 frames" "$work/passes2"
+# --time-draw N: the last frame drawn N more times, timed; the image written is the same.
+"$bin" render dam_break_2d --set fluid.spacing=0.05 --out "$work/d2_timed.png" --frames 3 --fps 30 --size 160x96 \
+  --color speed --display fluid --style particles --time-draw 5 --quiet 2>"$work/draws" >/dev/null
+check test $? -eq 0
+check grep -q "the last frame drawn 5 times at 160x96: median .* ms (.* frames/s)" "$work/draws"
+check cmp -s "$work/d2_particles.png" "$work/d2_timed.png"
+"$bin" render dam_break_2d --out "$work/x.png" --time-draw 0 >/dev/null 2>&1
+check test $? -eq 2
 
 # A gas scene draws particles coloured by log density unless --style/--color are given: an
 # explicit --style surface is kept (it was overridden), and --style particles is the default.

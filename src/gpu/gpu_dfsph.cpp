@@ -184,6 +184,9 @@ int GpuDfsph<D>::solve(bool density, double dt, double tolerance, const char* na
   const GLuint totals = totals_.id();
   const int max_iterations = std::max(1, s.dfsph_max_iterations);
   const int min_iterations = density ? 2 : 1;
+  // No fluid yet (an emitter's scene before its first layer): the CPU's loop sees a zero error
+  // and stops after its minimum; the device would test a residual sum nothing wrote.
+  if (n == 0) return std::min(min_iterations, max_iterations);
   const double threshold = sum_threshold(tolerance, n);
   gate(0);  // open
   bind_method();

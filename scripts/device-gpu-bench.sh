@@ -1,0 +1,53 @@
+#!/usr/bin/env bash
+# Issue 10 §5's GPU figures in one device call, after scripts/device-pack.sh here:
+#   run(command="bash scripts/device-gpu-bench.sh", carry=[".device"], timeout_s=600)
+# Unpacks the portable rtsph and the GL loaders, checks that the GPU backend starts through EGL,
+# then runs each measurement under its own time limit (so one that hangs or runs long costs
+# only its share), logging to $OUT/gpu-bench.log with JSON tables and a frame beside it.
+# RTSPH_DEVICE_QUICK=1 runs small sizes only (a check of the script, a minute or two).
+set -uo pipefail
+OUT=${OUT:-/tmp/rtsph-out}
+mkdir -p "$OUT"
+LOG=$OUT/gpu-bench.log
+if ! ldconfig -p | grep -q 'libEGL.so.1 '; then  # a bare GPU machine: bring glvnd's loaders
+  for f in .device/gl/*.deb; do dpkg -x "$f" /; done
+  ldconfig
+fi
+mkdir -p /tmp/rtsph
+tar -C /tmp/rtsph -xJf .device/rtsph-device.tar.xz
+export LD_LIBRARY_PATH=/tmp/rtsph/pkg/lib
+R=/tmp/rtsph/pkg/bin/rtsph
+
+step() {  # step LIMIT_S COMMAND...: run it under a time limit, log its output and exit status
+  local limit=$1
+  shift
+  echo "== $(date -u +%T) $* (limit ${limit} s)" | tee -a "$LOG"
+  timeout "$limit" "$@" 2>&1 | tee -a "$LOG"
+  echo "== exit ${PIPESTATUS[0]}" | tee -a "$LOG"
+}
+
+{ nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader; nproc; uname -r; } 2>&1 | tee -a "$LOG"
+# EGL finds the NVIDIA driver through glvnd's vendor file; where the default search misses it,
+# name it (the device tool's README).
+if ! "$R" run dam_break_3d --backend gpu --until 0.001 --quiet >/dev/null 2>&1; then
+  export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
+fi
+step 60 "$R" run dam_break_3d --backend gpu --until 0.01
+if [ "${RTSPH_DEVICE_QUICK:-0}" = 1 ]; then
+  step 60 "$R" bench --backend gpu --dim 3 --particles 100000 --steps 20
+  step 60 "$R" render dam_break_3d --backend gpu --frames 2 --size 1920x1080 --style particles \
+    --out "$OUT/frame.png" --time-draw 20
+  exit 0
+fi
+# WCSPH throughput, full physics (floor 7e8 fluid particle-steps/s at 4M)
+step 150 "$R" bench --backend gpu --dim 3 --particles 262144,1000000,4000000 --steps 50 --json "$OUT/wcsph.json"
+# PBF real-time capacity (floor 1M fluid particles)
+step 150 "$R" bench --backend gpu --realtime --method pbf --dim 3 --json "$OUT/pbf_realtime.json"
+# DFSPH throughput and capacity (no target; the device-side stopping test's first figures)
+step 60 "$R" bench --backend gpu --method dfsph --dim 3 --particles 250000,1000000 --steps 20 --json "$OUT/dfsph.json"
+# Drawing at 2M particles, 1920x1080, spheres, from the solver's buffers (floor 60 fps):
+# the dam break's 0.375 m^3 of water at spacing 0.00572 m is 2.0M particles.
+step 90 "$R" render dam_break_3d --backend gpu --set fluid.spacing=0.00572 --frames 2 --size 1920x1080 \
+  --style particles --out "$OUT/frame_2M.png" --time-draw 200
+step 60 "$R" render dam_break_3d --backend gpu --set fluid.spacing=0.00572 --frames 2 --size 1920x1080 \
+  --out "$OUT/frame_2M_surface.png" --time-draw 50

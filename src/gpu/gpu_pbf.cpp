@@ -97,9 +97,11 @@ void GpuPbf<D>::solve_density_constraint(double) {
   lambda_.set("omega_relax", Real(s.clamp_negative_pressure ? 1.0 : kTwoSidedRelax));
   const double dq = s.pbf_scorr_dq * this->prm_.support;
   const float w_dq = with_kernel<D>(s.kernel, this->prm_.h, [&](const auto& K) { return float(K.value(float(dq * dq))); });
-  correct_.set("inv_w_dq", Real(1.0 / double(w_dq)));
-  correct_.set("k_corr", Real(s.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30)));
-  correct_.set("n_corr", GLint(s.pbf_scorr_n));
+  for (const ComputeProgram* prog : {&correct_, &lambda_}) {  // λ: s_corr's share of the pressure
+    prog->set("inv_w_dq", Real(1.0 / double(w_dq)));
+    prog->set("k_corr", Real(s.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30)));
+    prog->set("n_corr", GLint(s.pbf_scorr_n));
+  }
   // The CPU's loop (solvers/pbf.cpp): past solver.pbf.iterations while the mean compression the
   // last λ pass measured is above solver.pbf.max_density_error. Each check reads 8 bytes back.
   const int least = std::max(1, s.pbf_iterations);

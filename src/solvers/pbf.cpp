@@ -126,7 +126,8 @@ void Pbf<D>::solve_density_constraint(double dt) {
   iteration_sum_ += iterations_;
   ++solves_;
   // Equivalent pressure: Δxᵢ = Δt² aᵢ with aᵢ = −Σⱼ m(pᵢ/ρᵢ² + pⱼ/ρⱼ²)∇Wᵢⱼ gives
-  // pᵢ = −ρᵢ² Σλᵢ / (ρ0 Δt²), summed over the iterations. Reported, never used.
+  // pᵢ = −ρᵢ² Σλᵢ / (ρ0 Δt²), summed over the iterations, s_corr's share included
+  // (compute_lambda). Reported, never used.
   const double scale = -1.0 / (prm_.rho0 * dt * dt);
   const std::size_t n = fluid_.size();
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
@@ -157,6 +158,7 @@ double Pbf<D>::compute_lambda() {
   for (int k = 0; k <= D; ++k) cache_out[k] = pair_cache_.at(0, k);
   const int n_corr = spec_.pbf_scorr_n;
   const double dq = spec_.pbf_scorr_dq * prm_.support;
+  const double k_corr = spec_.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30);
   // 3D: records instead of gathers; the positions move every iteration, so copied here.
   const Real* const packed_x = this->pack_positions();
   Real* rho = fluid_.rho.data();
@@ -174,7 +176,7 @@ double Pbf<D>::compute_lambda() {
       for (std::size_t i = b; i < e; ++i) {
         Real xi[D];
         for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
-        f8 wf{}, wb{}, sq{}, gf[D] = {}, gb[D] = {};
+        f8 wf{}, wb{}, sq{}, gf[D] = {}, gb[D] = {}, vs{}, vw{}, vb{};
         std::size_t slot = list.first_slot(i);
         auto pair = [&](auto, const f8* d, f8 r2, i8 m) {
           const f8 G = simd::select(m, Kl.grad_factor(r2), f8{});
@@ -193,6 +195,10 @@ double Pbf<D>::compute_lambda() {
           if (corr4) qn *= q4;
           if (corr8) qn *= q4 * q4;
           simd::store(cache_out[D] + slot, qn);
+          // The pairs' virial weights xᵢⱼ·∇Wᵢⱼ = r²G, for s_corr's share of the pressure below.
+          const f8 v = G * r2;
+          vw += v;
+          vs += v * qn;
           slot += simd::kWidth;
         };
         if (D == 3 && packed_x) {
@@ -206,6 +212,7 @@ double Pbf<D>::compute_lambda() {
                                       wb += w * Kl.value(r2);
                                       const f8 G = w * Kl.grad_factor(r2);
                                       for (int k = 0; k < D; ++k) gb[k] += G * d[k];
+                                      vb += G * r2;
                                     });
         const double r = double(mass) * simd::hsum(wf) + simd::hsum(wb);
         double dot = 0;
@@ -221,7 +228,16 @@ double Pbf<D>::compute_lambda() {
         const double l = -omega * C / (grad2 + eps);
         rho[i] = Real(r);
         lambda[i] = Real(l);
-        lambda_sum[i] += Real(l);
+        // s_corr is a pair term, (λᵢ + λⱼ + sᵢⱼ) in eq. 14, that carries load: its equivalent of
+        // λ is the share qᵢ whose pairs qᵢ + qⱼ have the virial Σⱼ sᵢⱼ xᵢⱼ·∇Wᵢⱼ of the sᵢⱼ
+        // themselves (the Irving–Kirkwood pressure of a pair force) in a locally uniform
+        // neighbourhood: qᵢ = ½ Σⱼ sᵢⱼ wᵢⱼ / Σ wᵢⱼ, wᵢⱼ = xᵢⱼ·∇Wᵢⱼ. The walls' samples count in
+        // the weights (a wall mirrors λᵢ, so a unit pressure's virial includes them) but exert no
+        // s_corr: beside a wall the share falls, as the wall's λ carries that load. Reported in
+        // the pressure only.
+        const double vwi = simd::hsum(vw) + simd::hsum(vb) / double(mass);
+        const double share = vwi != 0 ? -0.5 * k_corr * simd::hsum(vs) / vwi : 0.0;
+        lambda_sum[i] += Real(l + share);
       }
       return block_compression;
     }, ThreadPool::kPairs);

@@ -1,0 +1,201 @@
+// The 8-lane candidate loop (src/core/pair_loop.h) and the packed neighbour lists
+// (src/core/neighbour_list.h) against brute force, over grids built as core_grid_test.cpp builds
+// them (grid_test_util.h).
+#include <gtest/gtest.h>
+
+#include "grid_test_util.h"
+
+namespace rtsph::grid_test {
+namespace {
+
+TYPED_TEST_SUITE(GridTest, Dims);
+
+// ---- for_each_candidate_batch -------------------------------------------------------------
+
+/// The mask of every batch selects exactly the in-range, in-support lanes; offsets and r² are
+/// those of the selected candidates; and the union over batches is the brute-force neighbour set.
+template <int D>
+void check_batches(const Built<D>& b, std::size_t n, float cell, const std::string& what,
+                   std::size_t* boundary_ties = nullptr) {
+  using simd::f8;
+  using simd::i8;
+  const float support2 = cell * cell;
+  std::vector<uint32_t> stamp(n, UINT32_MAX);
+  for (std::size_t i = 0; i < n; ++i) {
+    float xi[D];
+    for (int a = 0; a < D; ++a) xi[a] = b.ptr[a][i];
+    const uint32_t cell_i = b.grid.sorted_cells()[i];
+    std::vector<std::pair<uint32_t, uint32_t>> ranges;
+    b.grid.for_each_range(cell_i, [&](uint32_t s, uint32_t e) { ranges.emplace_back(s, e); });
+    std::size_t selected = 0, batches = 0;
+    for_each_candidate_batch<D, false>(b.grid, cell_i, b.ptr, xi, support2,
+                                [&](uint32_t j, const f8* d, f8 r2, i8 m) {
+      ++batches;
+      uint32_t end = 0;
+      for (auto [s, e] : ranges)
+        if (s <= j && j < e) end = e;
+      ASSERT_NE(end, 0u) << what << ": batch start " << j << " is in no range of cell " << cell_i;
+      for (int l = 0; l < simd::kWidth; ++l) {
+        const uint32_t idx = j + uint32_t(l);
+        const bool in_range = idx < end;
+        const bool expect = in_range && r2[l] < support2;
+        ASSERT_EQ(m[l] != 0, expect) << what << ": lane " << l << " of batch " << j << " (end " << end
+                                     << ", r2 " << r2[l] << ") for particle " << i;
+        if (m[l]) {
+          ASSERT_EQ(m[l], -1) << what << ": mask lanes are all-ones";
+        }
+        if (!in_range) continue;
+        float r2s = 0;
+        for (int a = 0; a < D; ++a) {
+          const float expect_d = xi[a] - b.ptr[a][idx];
+          ASSERT_TRUE(d[a][l] == expect_d || (std::isnan(d[a][l]) && std::isnan(expect_d)))
+              << what << ": offset lane " << l << ": " << d[a][l] << " vs " << expect_d;
+          r2s += d[a][l] * d[a][l];
+        }
+        // r² may be FMA-contracted in the vector loop: equal to a few ulps.
+        if (std::isnan(r2s)) {
+          ASSERT_TRUE(std::isnan(r2[l])) << what << ": NaN candidate lost its NaN";
+        } else {
+          ASSERT_NEAR(r2[l], r2s, 4e-7f * r2s + 1e-30f) << what;
+        }
+        if (m[l]) {
+          ASSERT_NE(stamp[idx], uint32_t(i)) << what << ": candidate selected twice";
+          stamp[idx] = uint32_t(i);
+          ++selected;
+        }
+      }
+    });
+    if (::testing::Test::HasFatalFailure()) return;  // no earlier failures in these tests
+    // Against brute force. A pair whose r² lies within a few ulps of support² may be classified
+    // either way depending on FMA contraction; count those and accept either answer.
+    std::size_t nb = 0;
+    for (std::size_t j = 0; j < n; ++j) {
+      const float r2 = dist2<D>(b.ptr, i, j);
+      const bool tie = std::abs(r2 - support2) <= 4e-7f * support2;
+      if (tie) {
+        if (boundary_ties) ++*boundary_ties;
+        if (stamp[j] == uint32_t(i)) ++nb;
+        continue;
+      }
+      if (r2 < support2) {
+        ++nb;
+        ASSERT_EQ(stamp[j], uint32_t(i)) << what << ": batch loop misses neighbour " << j << " of " << i;
+      } else {
+        ASSERT_NE(stamp[j], uint32_t(i)) << what << ": batch loop selects non-neighbour " << j;
+      }
+    }
+    ASSERT_EQ(selected, nb) << what << " particle " << i;
+  }
+}
+
+template <int D, class P>
+void check_batches_for(const P& pts, const Vec<D>& lo, const Vec<D>& hi, float cell,
+                       const std::string& what) {
+  Built<D> b;
+  build(b, pts, lo, hi, cell, 2);
+  std::size_t ties = 0;
+  check_batches(b, pts.size(), cell, what, &ties);
+  if (what != "exact lattice") {
+    EXPECT_LE(ties, pts.size() / 100 + 2) << what << ": implausibly many boundary ties";
+  } else {
+    EXPECT_GT(ties, pts.size()) << what << ": the lattice should have pairs at exactly one cell";
+  }
+}
+
+TYPED_TEST(GridTest, CandidateBatchMatchesBruteForce) {
+  constexpr int D = TypeParam::D;
+  check_batches_for<D>(uniform<D>(D == 2 ? 3000 : 4000, -0.3f, 0.7f, 21), vec<D>(-0.3f),
+                       vec<D>(0.7f), 0.1f, "uniform");
+  check_batches_for<D>(uniform<D>(2000, 0.5001f, 0.5999f, 22), vec<D>(0.0f), vec<D>(1.0f), 0.1f,
+                       "cluster");
+  auto p = uniform<D>(1000, 0.0f, 1.0f, 23);
+  auto out = uniform<D>(500, -0.5f, 1.5f, 24);
+  p.insert(p.end(), out.begin(), out.end());
+  p[3][0] = kNaN;
+  check_batches_for<D>(p, vec<D>(0.0f), vec<D>(1.0f), 0.1f, "outside + NaN");
+  // Exact lattice with a representable cell: many pairs at r² == support² exactly, which the
+  // strict r² < support² mask must leave out.
+  Points<D> lat;
+  {
+    const int k = D == 2 ? 12 : 6;
+    int idx[D] = {};
+    while (true) {
+      std::array<float, D> q;
+      for (int a = 0; a < D; ++a) q[a] = float(idx[a]) * 0.25f;
+      lat.push_back(q);
+      int a = 0;
+      while (a < D && ++idx[a] > k) idx[a++] = 0;
+      if (a == D) break;
+    }
+  }
+  check_batches_for<D>(lat, vec<D>(0.0f), vec<D>(float(D == 2 ? 3.0 : 1.5)), 0.25f, "exact lattice");
+  check_batches_for<D>(Points<D>{}, vec<D>(0.0f), vec<D>(1.0f), 0.1f, "empty");
+  check_batches_for<D>(Points<D>(1), vec<D>(0.0f), vec<D>(1.0f), 0.1f, "single");
+}
+
+// Lanes past a range end read the array's padding. Fill that padding with positions right on
+// top of the particles: only the in_range part of the mask keeps them out.
+TYPED_TEST(GridTest, CandidateBatchMasksLanesPastRangeEnd) {
+  constexpr int D = TypeParam::D;
+  for (std::size_t n : {1u, 5u, 7u, 8u, 9u, 13u}) {
+    Points<D> p(n);
+    for (std::size_t i = 0; i < n; ++i)
+      for (int a = 0; a < D; ++a) p[i][a] = 0.35f + 0.001f * float(i);
+    Built<D> b;
+    build(b, p, vec<D>(0.0f), vec<D>(1.0f), 0.1f, 1);
+    for (int a = 0; a < D; ++a)
+      for (std::size_t k = n; k < n + simd::kWidth; ++k) b.sorted[a][k] = 0.35f;  // into the pad
+    check_batches(b, n, 0.1f, "pad n=" + std::to_string(n));
+    if (::testing::Test::HasFatalFailure()) return;  // no earlier failures in these tests
+  }
+}
+
+// NeighbourList (core/neighbour_list.h): each particle's list is exactly its brute-force
+// neighbour set (itself included), the lists lie back to back from slot 0, each starting at a
+// multiple of 8 and padded with i, and the whole layout is the same for 1 and 2 threads. A
+// dense cluster has more neighbours than the first guess of the stride, so the walk repeats.
+template <int D>
+void check_list(const Points<D>& pts, float cell, const std::string& what) {
+  Built<D> b;
+  build<D>(b, pts, vec<D>(0.0f), vec<D>(1.0f), cell, 1);
+  const std::size_t n = pts.size();
+  NeighbourList<D> one, two;
+  one.build(b.grid, b.ptr, n, cell * cell, ThreadPool(1));
+  two.build(b.grid, b.ptr, n, cell * cell, ThreadPool(2));
+  ASSERT_TRUE(one.valid()) << what;
+  std::size_t slot = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    ASSERT_EQ(one.first_slot(i), slot) << what << " particle " << i;
+    ASSERT_EQ(slot % 8, 0u) << what;
+    std::vector<uint32_t> want;
+    for (std::size_t j = 0; j < n; ++j)
+      if (dist2<D>(b.ptr, i, j) < cell * cell) want.push_back(uint32_t(j));
+    const uint32_t c = one.count(i);
+    std::vector<uint32_t> got(one.begin(i), one.begin(i) + c);
+    std::sort(got.begin(), got.end());
+    ASSERT_EQ(got, want) << what << " particle " << i;
+    const uint32_t padded = (c + 7u) & ~7u;
+    for (uint32_t s = c; s < padded; ++s) ASSERT_EQ(one.begin(i)[s], uint32_t(i)) << what;
+    ASSERT_EQ(two.first_slot(i), slot) << what;
+    ASSERT_EQ(two.count(i), c) << what;
+    for (uint32_t s = 0; s < padded; ++s) ASSERT_EQ(two.begin(i)[s], one.begin(i)[s]) << what;
+    slot += padded;
+  }
+  EXPECT_EQ(one.slots(), slot) << what;
+  EXPECT_EQ(two.slots(), slot) << what;
+}
+
+TYPED_TEST(GridTest, NeighbourListsArePackedAndMatchBruteForce) {
+  constexpr int D = TypeParam::D;
+  check_list<D>(uniform<D>(D == 2 ? 3000 : 4000, 0.0f, 1.0f, 31), 0.06f, "uniform");
+  // ~600 particles within one support radius: past the first stride (24 in 2D, 64 in 3D).
+  auto p = uniform<D>(600, 0.5f, 0.52f, 32);
+  auto q = uniform<D>(400, 0.0f, 1.0f, 33);
+  p.insert(p.end(), q.begin(), q.end());
+  check_list<D>(p, 0.05f, "cluster");
+  check_list<D>(Points<D>{}, 0.05f, "empty");
+}
+
+
+}  // namespace
+}  // namespace rtsph::grid_test

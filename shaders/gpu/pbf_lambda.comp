@@ -3,13 +3,13 @@
 //   lambda_i = -omega C_i / (sum_k |grad_k C_i|^2 + eps)                                        (eq. 11)
 // with the CPU's weights: walls mirror lambda_i, so sum_k |grad_k C_i|^2 =
 // ((grad_i C_i with walls doubled).grad_i C_i + sum_j |grad_j C_i|^2). The walls' gradient
-// sum_b Psi_b grad W_ib is kept for the correction pass. The running sum lam.y, the equivalent
-// pressure's, also takes s_corr's share (the CPU's Pbf::compute_lambda says why): half the mean of
-// s_ij = -k (W/W(dq))^n weighted by the pairs' virial x_ij.grad W_ij = r^2 G, the walls' samples
-// (Psi_b/m) in the weights with no s_corr of their own.
+// sum_b Psi_b grad W_ib is kept for the correction pass (wgrad.xyz). The substep's first pass
+// (with_share) also puts s_corr's share of the equivalent pressure in wgrad.w (the CPU's
+// Pbf::compute_lambda says why): half the mean of s_ij = -k (W/W(dq))^n weighted by the pairs'
+// virial x_ij.grad W_ij = r^2 G, the walls' samples (Psi_b/m) in the weights with no s_corr.
 BUFFER_POS BUFFER_DENS BUFFER_FKEY BUFFER_FSTART BUFFER_BPOS BUFFER_BSTART BUFFER_LAMBDA BUFFER_WGRAD
 uniform float eps, omega_relax, inv_w_dq, k_corr;
-uniform int n_corr;
+uniform int n_corr, with_share;
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= P.fluid_count) return;
@@ -27,10 +27,12 @@ void main() {
       wf += w;
       sq += G * G * r2;
       gf += G * d;
-      float q = w * inv_w_dq, qn = q;
-      for (int p = 1; p < n_corr; ++p) qn *= q;
-      vw += G * r2;
-      vs += G * r2 * qn;
+      if (with_share != 0) {
+        float q = w * inv_w_dq, qn = q;
+        for (int p = 1; p < n_corr; ++p) qn *= q;
+        vw += G * r2;
+        vs += G * r2 * qn;
+      }
     }
     for (uint j = bstart[c.x]; j < bstart[c.y]; ++j) {
       vec4 b = bpos[j];
@@ -39,7 +41,7 @@ void main() {
       if (r2 >= P.support2) continue;
       wb += b.w * kernel_w(r2);
       gb += (b.w * kernel_g(r2)) * d;
-      vw += (b.w / P.mass) * kernel_g(r2) * r2;
+      if (with_share != 0) vw += (b.w / P.mass) * kernel_g(r2) * r2;
     }
   }
   float rho = P.mass * wf + wb;
@@ -49,7 +51,7 @@ void main() {
   if ((P.flags & RTSPH_F_CLAMP_NEGATIVE) != 0u) C = max(C, 0.0);
   float l = -omega_relax * C / (grad2 + eps);
   dens[i].x = rho;
-  float share = vw != 0.0 ? -0.5 * k_corr * vs / vw : 0.0;
-  lam[i] = vec2(l, lam[i].y + (l + share));
-  wgrad[i] = vec4(gb, 0.0);
+  float share = with_share == 0 ? wgrad[i].w : vw != 0.0 ? -0.5 * k_corr * vs / vw : 0.0;
+  lam[i] = vec2(l, lam[i].y + l);
+  wgrad[i] = vec4(gb, share);
 }

@@ -61,8 +61,10 @@ void GpuPbf<D>::step() {
     this->bind_all();
     pred_.bind(RTSPH_B_PRED);
     lambda_buf_.bind(RTSPH_B_LAMBDA);
+    wgrad_.bind(RTSPH_B_WGRAD);
     this->put_back_counter_.bind(RTSPH_B_REDUCE);
     velocity_.set("inv_dt", Real(1.0 / dt));
+    velocity_.set("iterations", Real(iterations_));
     glProgramUniform1d(velocity_.id(), glGetUniformLocation(velocity_.id(), "pressure_scale"),
                        -1.0 / (this->prm_.rho0 * dt * dt));
     velocity_.dispatch(n);                         // line 21, the equivalent pressure, put-back
@@ -114,6 +116,7 @@ void GpuPbf<D>::solve_density_constraint(double) {
       this->bind_all();
       lambda_buf_.bind(RTSPH_B_LAMBDA);
       wgrad_.bind(RTSPH_B_WGRAD);
+      lambda_.set("with_share", GLint(iterations_ == 0 ? 1 : 0));  // s_corr's share: first pass
       lambda_.dispatch(n);
     }
     ++iterations_;

@@ -19,7 +19,10 @@ class Pbf final : public FluidWorld<D> {
   double choose_time_step() const;
   void save_predicted_positions();
   void solve_density_constraint(double dt);  // λᵢ, then Δxᵢ (eqs. 11-14), Jacobi
-  double compute_lambda();                   // returns the mean compression it measured
+  /// Returns the mean compression it measured. kShare: also s_corr's share of the pressure
+  /// (scorr_share_), in the substep's first pass only.
+  template <bool kShare>
+  double compute_lambda();
   void apply_position_correction();
   void update_velocity(double dt);           // vᵢ = (x*ᵢ − xᵢ)/Δt (Algorithm 1, line 21)
   void xsph_and_vorticity(double dt);        // eqs. 15-17, and ρ at the corrected positions
@@ -27,7 +30,7 @@ class Pbf final : public FluidWorld<D> {
   bool sort_after_edit() const override { return false; }  // step(): predict, then sort
 
   double lattice_gradient_norm_ = 0;  // Σⱼ|∇ⱼCᵢ|² of a particle inside the rest lattice (1/m²)
-  AlignedArray<Real> lambda_, lambda_sum_, rho_next_;
+  AlignedArray<Real> lambda_, lambda_sum_, scorr_share_, rho_next_;
   std::array<AlignedArray<Real>, D> predicted_, delta_;
   AlignedArray<Real> packed_v_;  // 3D: (vx, vy, vz, ρ) records for the XSPH pass
   AlignedArray<Real> omega_[D == 2 ? 1 : 3];

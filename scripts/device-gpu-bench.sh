@@ -32,7 +32,7 @@ step() {  # step LIMIT_S COMMAND...: run it under a time limit, log its output a
 if ! "$R" run dam_break_3d --backend gpu --until 0.001 --quiet >/dev/null 2>&1; then
   export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
 fi
-step 60 "$R" run dam_break_3d --backend gpu --until 0.01
+step 40 "$R" run dam_break_3d --backend gpu --until 0.01
 if [ "${RTSPH_DEVICE_QUICK:-0}" = 1 ]; then
   step 60 "$R" bench --backend gpu --dim 3 --particles 100000 --steps 20
   step 60 "$R" render dam_break_3d --backend gpu --frames 2 --size 1920x1080 --style particles \
@@ -40,14 +40,16 @@ if [ "${RTSPH_DEVICE_QUICK:-0}" = 1 ]; then
   exit 0
 fi
 # WCSPH throughput, full physics (floor 7e8 fluid particle-steps/s at 4M)
-step 150 "$R" bench --backend gpu --dim 3 --particles 262144,1000000,4000000 --steps 50 --json "$OUT/wcsph.json"
+step 120 "$R" bench --backend gpu --dim 3 --particles 262144,1000000,4000000 --steps 50 --json "$OUT/wcsph.json"
 # PBF real-time capacity (floor 1M fluid particles)
-step 150 "$R" bench --backend gpu --realtime --method pbf --dim 3 --json "$OUT/pbf_realtime.json"
+step 120 "$R" bench --backend gpu --realtime --method pbf --dim 3 --json "$OUT/pbf_realtime.json"
+# PBF per-stage costs at the sizes the capacity search lands near
+step 45 "$R" bench --backend gpu --method pbf --dim 3 --particles 1000000,4000000 --steps 10 --json "$OUT/pbf.json"
 # DFSPH throughput and capacity (no target; the device-side stopping test's first figures)
 step 60 "$R" bench --backend gpu --method dfsph --dim 3 --particles 250000,1000000 --steps 20 --json "$OUT/dfsph.json"
 # Drawing at 2M particles, 1920x1080, spheres, from the solver's buffers (floor 60 fps):
 # the dam break's 0.375 m^3 of water at spacing 0.00572 m is 2.0M particles.
-step 90 "$R" render dam_break_3d --backend gpu --set fluid.spacing=0.00572 --frames 2 --size 1920x1080 \
-  --style particles --out "$OUT/frame_2M.png" --time-draw 200
 step 60 "$R" render dam_break_3d --backend gpu --set fluid.spacing=0.00572 --frames 2 --size 1920x1080 \
+  --style particles --out "$OUT/frame_2M.png" --time-draw 200
+step 45 "$R" render dam_break_3d --backend gpu --set fluid.spacing=0.00572 --frames 2 --size 1920x1080 \
   --out "$OUT/frame_2M_surface.png" --time-draw 50

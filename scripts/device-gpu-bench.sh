@@ -29,7 +29,7 @@ step() {  # step LIMIT_S COMMAND...: run it under a time limit, log its output a
 { nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader; nproc; uname -r; } 2>&1 | tee -a "$LOG"
 # EGL finds the NVIDIA driver through glvnd's vendor file; where the default search misses it,
 # name it (the device tool's README).
-if ! "$R" run dam_break_3d --backend gpu --until 0.001 --quiet >/dev/null 2>&1; then
+if ! timeout 30 "$R" run dam_break_3d --backend gpu --until 0.001 --quiet >/dev/null 2>&1; then
   export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
 fi
 step 40 "$R" run dam_break_3d --backend gpu --until 0.01

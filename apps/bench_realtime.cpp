@@ -23,6 +23,7 @@ struct Probe {
   std::size_t fluid = 0;
   std::uint64_t steps = 0;
   double sim_s = 0, wall_s = 0;
+  double iterations = -1;  // PBF's or DFSPH's mean pressure iterations per step (-1: none)
   double rtf() const { return wall_s > 0 ? sim_s / wall_s : 0; }
 };
 
@@ -41,6 +42,8 @@ Probe probe(const BenchOptions& o, double n, int threads) {
   }
   p.sim_s = sim->time();
   p.steps = sim->step_count();
+  const SimStats st = sim->stats();
+  if (st.method == "pbf" || st.method == "dfsph") p.iterations = st.mean_pressure_iterations;
   return p;
 }
 }  // namespace
@@ -49,15 +52,16 @@ int bench_realtime(const BenchOptions& o) {
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
   fmt::print("rtsph bench --realtime: {}D dam break, {}, {} threads, backend {}, first {} s simulated\n",
              o.dim, o.method, threads, o.backend, o.window_s);
-  fmt::print("{:>9} {:>7} {:>9} {:>9} {:>8}\n", "fluid", "steps", "sim s", "wall s", "RTF");
+  fmt::print("{:>9} {:>7} {:>9} {:>9} {:>8} {:>6}\n", "fluid", "steps", "sim s", "wall s", "RTF", "iter");
   nlohmann::ordered_json rows = nlohmann::json::array();
   auto run = [&](double n) {
     const Probe p = probe(o, n, threads);
-    fmt::print("{:>9} {:>7} {:>9.3f} {:>9.3f} {:>8.3f}\n", p.fluid, p.steps, p.sim_s, p.wall_s,
-               p.rtf());
+    fmt::print("{:>9} {:>7} {:>9.3f} {:>9.3f} {:>8.3f} {:>6}\n", p.fluid, p.steps, p.sim_s, p.wall_s,
+               p.rtf(), p.iterations >= 0 ? fmt::format("{:.1f}", p.iterations) : std::string("-"));
     std::fflush(stdout);
     rows.push_back({{"fluid_particles", p.fluid}, {"steps", p.steps}, {"sim_s", p.sim_s},
                     {"wall_s", p.wall_s}, {"real_time_factor", p.rtf()}});
+    if (p.iterations >= 0) rows.back()["mean_pressure_iterations"] = p.iterations;
     return p;
   };
   // Bracket: lo keeps up (or is the smallest size tried), hi does not.

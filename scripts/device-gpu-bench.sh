@@ -4,7 +4,8 @@
 # Unpacks the portable rtsph and the GL loaders, checks that the GPU backend starts through EGL,
 # then runs each measurement under its own time limit (so one that hangs or runs long costs
 # only its share), logging to $OUT/gpu-bench.log with JSON tables and a frame beside it.
-# RTSPH_DEVICE_QUICK=1 runs small sizes only (a check of the script, a minute or two).
+# RTSPH_DEVICE_QUICK=1 runs small sizes only (a check of the script, a minute or two);
+# RTSPH_DEVICE_PROFILE=1 the stage tables and iteration counts behind the figures instead.
 set -uo pipefail
 OUT=${OUT:-/tmp/rtsph-out}
 mkdir -p "$OUT"
@@ -37,6 +38,18 @@ if [ "${RTSPH_DEVICE_QUICK:-0}" = 1 ]; then
   step 60 "$R" bench --backend gpu --dim 3 --particles 100000 --steps 20
   step 60 "$R" render dam_break_3d --backend gpu --frames 2 --size 1920x1080 --style particles \
     --out "$OUT/frame.png" --time-draw 20
+  exit 0
+fi
+if [ "${RTSPH_DEVICE_PROFILE:-0}" = 1 ]; then
+  step 60 "$R" bench --backend gpu --dim 3 --particles 1000000,4000000 --steps 20 --json "$OUT/wcsph_stages.json"
+  step 60 "$R" bench --backend gpu --method pbf --dim 3 --particles 250000,1000000 --steps 10 --json "$OUT/pbf_stages.json"
+  step 60 "$R" bench --backend gpu --method pbf --dim 3 --particles 250000,1000000 --steps 10 \
+    --set solver.pbf.max_density_error=0 --json "$OUT/pbf_fixed_stages.json"
+  step 60 "$R" bench --backend gpu --method dfsph --dim 3 --particles 250000,1000000 --steps 10 --json "$OUT/dfsph_stages.json"
+  step 60 "$R" bench --backend gpu --realtime --method pbf --dim 3 --json "$OUT/pbf_realtime.json"
+  step 60 "$R" bench --backend gpu --realtime --method pbf --dim 3 --set solver.pbf.max_density_error=0 \
+    --json "$OUT/pbf_fixed_realtime.json"
+  step 60 "$R" bench --backend gpu --realtime --method dfsph --dim 3 --json "$OUT/dfsph_realtime.json"
   exit 0
 fi
 # WCSPH throughput, full physics (floor 7e8 fluid particle-steps/s at 4M)

@@ -2,26 +2,36 @@
 //   dx_i = (1/rho0)[sum_j m (lambda_i + lambda_j + s_corr) grad W_ij + sum_b Psi_b 2 lambda_i grad W_ib]  (eq. 14)
 //   s_corr = -k (W(r)/W(dq))^n                                                                            (eq. 13)
 // then x_i + dx_i, stopped on a container wall plane (collision response), into pos_next: every
-// correction of an iteration reads the same positions.
-BUFFER_POS BUFFER_FKEY BUFFER_FSTART BUFFER_LAMBDA BUFFER_WGRAD BUFFER_POS_NEXT
+// correction of an iteration reads the same positions. The fluid pairs come from the substep's
+// lists (pbf_list.comp), or the grid for a particle they could not hold.
+BUFFER_POS BUFFER_FKEY BUFFER_FSTART BUFFER_LAMBDA BUFFER_WGRAD BUFFER_POS_NEXT BUFFER_NLIST BUFFER_NCOUNT
 uniform float inv_w_dq, k_corr;
-uniform int n_corr;
+uniform int n_corr, use_lists;
+uniform uint list_stride, fluid_cap;
+
+vec3 pair(vec3 xi, float li, uint j) {
+  vec3 d = min_image(xi - pos[j].xyz);
+  float r2 = dot(d, d);
+  if (r2 >= P.support2) return vec3(0.0);
+  float q = kernel_w(r2) * inv_w_dq, qn = q;
+  for (int p = 1; p < n_corr; ++p) qn *= q;
+  return (li + lam[j].x - k_corr * qn) * kernel_g(r2) * d;
+}
+
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= P.fluid_count) return;
   vec3 xi = pos[i].xyz;
   float li = lam[i].x;
-  uint key = fkey[i];
   vec3 a = vec3(0.0);
-  for (int r = 0; r < stencil_count(); ++r) {
-    uvec2 c = stencil_range(key, r);
-    for (uint j = fstart[c.x]; j < fstart[c.y]; ++j) {
-      vec3 d = min_image(xi - pos[j].xyz);
-      float r2 = dot(d, d);
-      if (r2 >= P.support2) continue;
-      float q = kernel_w(r2) * inv_w_dq, qn = q;
-      for (int p = 1; p < n_corr; ++p) qn *= q;
-      a += (li + lam[j].x - k_corr * qn) * kernel_g(r2) * d;
+  uint listed = use_lists != 0 ? ncount[i].x : 0xffffffffu;
+  if (listed <= fluid_cap) {
+    for (uint k = 0u; k < listed; ++k) a += pair(xi, li, nlist[k * list_stride + i]);
+  } else {
+    uint key = fkey[i];
+    for (int r = 0; r < stencil_count(); ++r) {
+      uvec2 c = stencil_range(key, r);
+      for (uint j = fstart[c.x]; j < fstart[c.y]; ++j) a += pair(xi, li, j);
     }
   }
   vec3 dx = (P.mass * P.inv_rho0) * a + (2.0 * li * P.inv_rho0) * wgrad[i].xyz;

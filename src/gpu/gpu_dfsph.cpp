@@ -50,7 +50,7 @@ void GpuDfsph<D>::step() {
   const std::size_t n = this->fluid_.size();
   for (Buffer* b : {&solve_, &wgrad_}) b->reserve(this->capacity() * sizeof(glsl::vec4));
   {
-    ScopedTimer timer(this->times_.forces_s);
+    const auto timer = this->stage_timer(this->times_.forces_s);
     this->write_params(this->dt_, 0);  // the force passes read no Δt
     this->bind_all();
     nonpressure_.dispatch(n);          // a_nonp: viscosity, gravity, walls, brush   (line 4)
@@ -58,7 +58,7 @@ void GpuDfsph<D>::step() {
   }
   const double dt = choose_time_step();  // CFL and the head speed               (line 5)
   {
-    ScopedTimer timer(this->times_.integrate_s);
+    const auto timer = this->stage_timer(this->times_.integrate_s);
     this->write_params(dt, 0);
     this->kick(dt);                      // v* = v + Δt a_nonp                     (line 6)
   }
@@ -67,25 +67,25 @@ void GpuDfsph<D>::step() {
   density_bias_ = dfsph::targets_mean_density<D>(s, n) ? this->gpu_mean_density() - this->prm_.rho0 : 0.0;
   counters_.density_iterations = solve(true, dt, s.dfsph_max_density_error, "density");  // Alg. 3 (line 7)
   {
-    ScopedTimer timer(this->times_.integrate_s);
+    const auto timer = this->stage_timer(this->times_.integrate_s);
     this->kick_drift();                            // x += Δt v*, walls, put-back   (line 8)
     this->advance_scene_gpu(this->time_ + dt, dt); // obstacles, emitters
   }
   for (Buffer* b : {&solve_, &wgrad_}) b->reserve(this->capacity() * sizeof(glsl::vec4));  // emitted
   {
-    ScopedTimer timer(this->times_.neighbours_s);
+    const auto timer = this->stage_timer(this->times_.neighbours_s);
     this->sort_particles();                        //                              (line 9)
   }
   this->shift_particles_gpu(dt);                   // optional shifting
   {
-    ScopedTimer timer(this->times_.density_s);
+    const auto timer = this->stage_timer(this->times_.density_s);
     factors(true);                                 // ρᵢ, αᵢ                 (lines 10-11)
     this->measure_density_error_gpu();
   }
   counters_.divergence_iterations = solve(false, dt, s.dfsph_max_divergence_error, "divergence");  // Alg. 2
   {
     // The step's pressure for output, p = ρ²(P_density + P_divergence).
-    ScopedTimer timer(this->times_.forces_s);
+    const auto timer = this->stage_timer(this->times_.forces_s);
     bind_method();
     totals_.set("mode", GLint(2));
     totals_.dispatch(this->fluid_.size());  // emitters may have added particles since n
@@ -177,7 +177,7 @@ double sum_threshold(double tolerance, std::size_t count) {
 // stopping test runs on the device; the sweeps queued after it stops return at once.
 template <int D>
 int GpuDfsph<D>::solve(bool density, double dt, double tolerance, const char* name) {
-  ScopedTimer timer(density ? this->times_.density_s : this->times_.forces_s);
+  const auto timer = this->stage_timer(density ? this->times_.density_s : this->times_.forces_s);
   const SimSpec& s = this->spec_;
   const std::size_t n = this->fluid_.size();
   const double to_p = density ? 1.0 / (dt * dt) : 1.0 / dt;

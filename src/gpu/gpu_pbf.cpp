@@ -11,6 +11,9 @@ namespace rtsph::gpu {
 namespace {
 // The CPU's Jacobi relaxation for a two-sided constraint (solvers/pbf.cpp, kTwoSidedRelax).
 constexpr double kTwoSidedRelax = 0.5;
+// The neighbour lists' reach over the support: a pair may close by 15% of the support (0.3
+// spacings at h = spacing) within a substep's iterations and still be summed.
+constexpr double kListSkin = 1.15;
 }  // namespace
 
 template <int D>
@@ -24,6 +27,17 @@ GpuPbf<D>::GpuPbf(const SimSpec& spec, int threads) : GpuWorld<D>(spec, threads)
   xsph_ = ComputeProgram("pbf_xsph.comp", d);
   vorticity_ = ComputeProgram("pbf_vorticity.comp", d);
   apply_ = ComputeProgram("pbf_apply.comp", d);
+  list_ = ComputeProgram("pbf_list.comp", d);
+  // The lists reach a skin past the support (kListSkin), so that the iterations sum the pairs a
+  // grid walk would even after the corrections move them. Slots for 30% more neighbours than a
+  // particle has within that reach in the rest lattice, and for as many wall samples as it has
+  // fluid neighbours there: a particle that needs more walks the grid instead, correct but slower.
+  const double reach = kListSkin * this->prm_.support / spec.spacing;
+  const double inside = D == 3 ? 4.0 / 3.0 * 3.14159265358979 * reach * reach * reach
+                               : 3.14159265358979 * reach * reach;
+  fluid_cap_ = GLuint(std::ceil(1.3 * inside)) + 8;
+  boundary_cap_ = GLuint(std::ceil(inside)) * GLuint(std::max(1, spec.boundary_layers));
+  glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes_);
   lattice_gradient_norm_ = this->lattice_gradient_sum() / (this->prm_.rho0 * this->prm_.rho0);
   this->sort_particles();  // the cell ranges (the fluid is already in cell order)
   this->density_only();
@@ -37,7 +51,7 @@ template <int D>
 void GpuPbf<D>::step() {
   const double dt = choose_time_step();
   {
-    ScopedTimer timer(this->times_.integrate_s);
+    const auto timer = this->stage_timer(this->times_.integrate_s);
     this->write_params(dt, dt);
     this->bind_all();
     external_.dispatch(this->fluid_.size());       // gravity, brush, walls' hydrostatic part (line 2)
@@ -46,8 +60,9 @@ void GpuPbf<D>::step() {
     this->advance_scene_gpu(this->time_ + dt, dt); // obstacles, emitters
   }
   {
-    ScopedTimer timer(this->times_.neighbours_s);
+    const auto timer = this->stage_timer(this->times_.neighbours_s);
     this->sort_particles();                        // lines 5-7
+    list_neighbours();
   }
   const std::size_t n = this->fluid_.size();
   for (Buffer* b : {&pred_, &wgrad_, &delta_, &omega_}) b->reserve(this->capacity() * 16);
@@ -57,7 +72,7 @@ void GpuPbf<D>::step() {
   copy_.dispatch(n);                               // x*, kept for the velocity update
   solve_density_constraint(dt);                    // lines 8-19
   {
-    ScopedTimer timer(this->times_.integrate_s);
+    const auto timer = this->stage_timer(this->times_.integrate_s);
     this->bind_all();
     pred_.bind(RTSPH_B_PRED);
     lambda_buf_.bind(RTSPH_B_LAMBDA);
@@ -91,6 +106,36 @@ double GpuPbf<D>::choose_time_step() {
 }
 
 template <int D>
+void GpuPbf<D>::list_neighbours() {
+  const std::size_t stride = this->capacity();
+  const std::size_t fluid_bytes = stride * fluid_cap_ * sizeof(GLuint);
+  const std::size_t wall_bytes = stride * boundary_cap_ * sizeof(GLuint);
+  // Where a list would outgrow a storage block (llvmpipe allows 128 MB), the passes walk the
+  // grid as before.
+  lists_ = GLint64(std::max(fluid_bytes, wall_bytes)) <= max_block_bytes_;
+  nlist_.reserve(lists_ ? fluid_bytes : 16);
+  blist_.reserve(lists_ ? wall_bytes : 16);
+  ncount_.reserve(stride * 2 * sizeof(GLuint));
+  if (!lists_) return;
+  this->bind_all();
+  bind_lists(list_);
+  list_.set("boundary_cap", boundary_cap_);
+  const double reach = kListSkin * this->prm_.support;
+  list_.set("reach2", float(reach * reach));
+  list_.dispatch(this->fluid_.size());
+}
+
+template <int D>
+void GpuPbf<D>::bind_lists(const ComputeProgram& prog) const {
+  nlist_.bind(RTSPH_B_NLIST);
+  blist_.bind(RTSPH_B_BLIST);
+  ncount_.bind(RTSPH_B_NCOUNT);
+  prog.set("use_lists", GLint(lists_ ? 1 : 0));
+  prog.set("list_stride", GLuint(this->capacity()));
+  prog.set("fluid_cap", fluid_cap_);
+}
+
+template <int D>
 void GpuPbf<D>::solve_density_constraint(double) {
   const SimSpec& s = this->spec_;
   const std::size_t n = this->fluid_.size();
@@ -104,6 +149,7 @@ void GpuPbf<D>::solve_density_constraint(double) {
     prog->set("k_corr", Real(s.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30)));
     prog->set("n_corr", GLint(s.pbf_scorr_n));
   }
+  lambda_.set("boundary_cap", boundary_cap_);  // (bind_lists() sets the rest)
   // The CPU's loop (solvers/pbf.cpp): past solver.pbf.iterations while the mean compression the
   // last λ pass measured is above solver.pbf.max_density_error. Each check reads 8 bytes back.
   const int least = std::max(1, s.pbf_iterations);
@@ -112,10 +158,11 @@ void GpuPbf<D>::solve_density_constraint(double) {
   iterations_ = 0;
   for (;;) {
     {
-      ScopedTimer timer(this->times_.density_s);
+      const auto timer = this->stage_timer(this->times_.density_s);
       this->bind_all();
       lambda_buf_.bind(RTSPH_B_LAMBDA);
       wgrad_.bind(RTSPH_B_WGRAD);
+      bind_lists(lambda_);
       lambda_.set("with_share", GLint(iterations_ == 0 ? 1 : 0));  // s_corr's share: first pass
       lambda_.dispatch(n);
     }
@@ -123,11 +170,12 @@ void GpuPbf<D>::solve_density_constraint(double) {
     const bool check = tolerance > 0 && iterations_ >= least && iterations_ < most;
     const double error = check ? this->mean_compression_now() : 0.0;
     {
-      ScopedTimer timer(this->times_.forces_s);
+      const auto timer = this->stage_timer(this->times_.forces_s);
       this->bind_all();
       lambda_buf_.bind(RTSPH_B_LAMBDA);
       wgrad_.bind(RTSPH_B_WGRAD);
       this->pos_alt_.bind(RTSPH_B_POS_NEXT);
+      bind_lists(correct_);
       correct_.dispatch(n);
       this->pos_.swap(this->pos_alt_);  // Jacobi: all move at once
     }
@@ -143,11 +191,11 @@ void GpuPbf<D>::xsph_and_vorticity(double dt) {
   const SimSpec& s = this->spec_;
   const std::size_t n = this->fluid_.size();
   if (s.pbf_xsph <= 0 && s.pbf_vorticity <= 0) {
-    ScopedTimer timer(this->times_.density_s);
+    const auto timer = this->stage_timer(this->times_.density_s);
     this->density_only();
     return;
   }
-  ScopedTimer timer(this->times_.forces_s);
+  const auto timer = this->stage_timer(this->times_.forces_s);
   const bool vort = s.pbf_vorticity > 0;
   // The new density goes to a spare buffer (the volumes read the old one), then takes its place.
   Buffer& dens_next = this->vel_alt_;  // free until the next sort's gather
@@ -158,6 +206,8 @@ void GpuPbf<D>::xsph_and_vorticity(double dt) {
   omega_.bind(RTSPH_B_OMEGA);
   xsph_.set("xsph_c", Real(s.pbf_xsph));
   xsph_.set("vorticity", GLint(vort ? 1 : 0));
+  bind_lists(xsph_);
+  xsph_.set("boundary_cap", boundary_cap_);
   xsph_.dispatch(n);
   this->dens_.swap(dens_next);
   if (vort) {

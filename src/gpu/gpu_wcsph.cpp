@@ -27,7 +27,7 @@ void GpuWcsph<D>::step() {
     dt = wcsph_time_step(this->spec_, this->prm_, m.v2, m.a2, this->viscous_dt_limit());
   }
   {
-    ScopedTimer timer(this->times_.integrate_s);
+    const auto timer = this->stage_timer(this->times_.integrate_s);
     this->write_params(dt, 0.5 * dt);
     this->transport_velocity_gpu(0.5 * dt);              // optional: ṽ − v (Adami 2013)
     this->kick_drift();                                  // v(t+dt/2), x(t+dt), walls, put-back
@@ -35,7 +35,7 @@ void GpuWcsph<D>::step() {
   }
   update_forces();                                       // a(t+dt)
   {
-    ScopedTimer timer(this->times_.integrate_s);
+    const auto timer = this->stage_timer(this->times_.integrate_s);
     this->kick(0.5 * dt);                                // v(t+dt)
   }
   this->time_ += dt;
@@ -47,17 +47,17 @@ void GpuWcsph<D>::step() {
 template <int D>
 void GpuWcsph<D>::update_forces() {
   {
-    ScopedTimer timer(this->times_.neighbours_s);
+    const auto timer = this->stage_timer(this->times_.neighbours_s);
     this->sort_particles();             // stable radix sort by cell (sort.h)
   }
   this->shift_particles_gpu(this->dt_);  // optional (solver.shifting), the last step's Δt
   {
-    ScopedTimer timer(this->times_.density_s);
+    const auto timer = this->stage_timer(this->times_.density_s);
     this->density_and_pressure();       // Akinci 2012 eq. 6; Tait or linear EOS
     this->measure_density_error_gpu();
     this->boundary_pressure();          // Adami et al. 2012, eq. 27
   }
-  ScopedTimer timer(this->times_.forces_s);
+  const auto timer = this->stage_timer(this->times_.forces_s);
   this->forces();                       // pressure, viscosity, gravity, brush
   this->surface_forces();               // optional: Akinci 2013 cohesion, curvature, adhesion
   this->transport_stress_gpu();         // optional: Adami 2013's momentum correction

@@ -9,6 +9,7 @@
 // speed and acceleration for an adaptive time step. Every call needs the OpenGL context that
 // was current when the simulation was made to be current on the calling thread.
 #include <array>
+#include <chrono>
 #include <memory>
 #include <string>
 #include <vector>
@@ -20,11 +21,33 @@
 
 namespace rtsph::gpu {
 
+/// Adds a stage's wall time to `sink`: with `sync`, the GPU's time to run it (glFinish at both
+/// ends), else the host's time to queue it.
+class GpuStageTimer {
+ public:
+  GpuStageTimer(bool sync, double& sink) : sync_(sync), sink_(sink) {
+    if (sync_) glFinish();
+    t0_ = std::chrono::steady_clock::now();
+  }
+  ~GpuStageTimer() {
+    if (sync_) glFinish();
+    sink_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0_).count();
+  }
+  GpuStageTimer(const GpuStageTimer&) = delete;
+  GpuStageTimer& operator=(const GpuStageTimer&) = delete;
+
+ private:
+  bool sync_;
+  double& sink_;
+  std::chrono::steady_clock::time_point t0_;
+};
+
 template <int D>
 class GpuWorld : public FluidWorld<D> {
  public:
   ~GpuWorld() override;
   void wait_idle() const override { glFinish(); }
+  void set_stage_sync(bool on) override { stage_sync_ = on; }
   ParticleView fluid() const override;
   BoundaryView boundary() const override;
   SimStats stats() const override;
@@ -45,6 +68,9 @@ class GpuWorld : public FluidWorld<D> {
   /// Copies fluid particles [first, first + count) of the CPU arrays into the GPU buffers.
   void upload_fluid(std::size_t first, std::size_t count);
   GpuWorld(const SimSpec& spec, int threads);
+
+  /// Times a stage into `sink` (set_stage_sync()).
+  GpuStageTimer stage_timer(double& sink) const { return GpuStageTimer(stage_sync_, sink); }
 
   // Stages, in the order a step calls them.
   struct Extremes { double v2 = 0, a2 = 0; };
@@ -149,6 +175,7 @@ class GpuWorld : public FluidWorld<D> {
   std::size_t capacity_ = 0;        // fluid particles the buffers hold (emitters included)
   std::uint64_t put_back_base_ = 0; // put-backs before the GPU counter was last zeroed
   bool boundary_sorted_ = false;
+  bool stage_sync_ = false;         // set_stage_sync()
   bool loading_ = false;            // prepare_state() .. state_loaded(): host copies are the truth
   mutable bool host_fresh_ = true, scalars_fresh_ = true, boundary_fresh_ = true;
 };

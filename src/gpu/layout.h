@@ -70,6 +70,11 @@ struct alignas(32) dvec4 { double x, y, z, w; };
 #define RTSPH_B_POS_NEXT RTSPH_B_GATHER_OUT0  // vec4: positions after a Jacobi correction
 #define RTSPH_B_DELTA RTSPH_B_GATHER_OUT1     // vec4: XSPH and vorticity velocity change
 #define RTSPH_B_OMEGA RTSPH_B_GATHER_OUT2     // vec4: vorticity
+// PBF's neighbour lists borrow the sort's key and value bindings: built right after the sort and
+// read by the constraint iterations, never during one.
+#define RTSPH_B_NLIST RTSPH_B_KEYS_IN         // uint: fluid neighbours' indices, slot-major
+#define RTSPH_B_NCOUNT RTSPH_B_VALS_IN        // uvec2: fluid and boundary neighbours found
+#define RTSPH_B_BLIST RTSPH_B_KEYS_OUT        // uint: wall samples' indices, slot-major
 // DFSPH's arrays borrow them the same way (WGRAD as PBF's). Only the warm start outlives a step;
 // it is carried through the sort by a gather of its own.
 #define RTSPH_B_DFSPH_SOLVE RTSPH_B_GATHER_IN0   // vec4: this sweep's change of P_i, the last sweep's

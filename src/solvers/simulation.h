@@ -83,6 +83,11 @@ class Simulation {
   virtual SimStats stats() const = 0;
   virtual const StageTimes& stage_times() const = 0;
   virtual void reset_stage_times() = 0;
+  /// A backend that queues its work (the GPU) times each stage as the host's time to queue it,
+  /// which says nothing about the stage's cost. On, it waits for the device at each stage's
+  /// start and end, so stage_times() holds each stage's own run time, and steps run slower
+  /// (rtsph bench's stage columns). The CPU's stages are timed exactly either way.
+  virtual void set_stage_sync(bool) {}
 
   /// Views stay valid until the next step() (arrays are reordered every step).
   virtual ParticleView fluid() const = 0;

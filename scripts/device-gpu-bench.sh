@@ -60,9 +60,9 @@ step 120 "$R" bench --backend gpu --realtime --method pbf --dim 3 --json "$OUT/p
 step 45 "$R" bench --backend gpu --method pbf --dim 3 --particles 1000000,4000000 --steps 10 --json "$OUT/pbf.json"
 # DFSPH throughput and capacity (no target; the device-side stopping test's first figures)
 step 60 "$R" bench --backend gpu --method dfsph --dim 3 --particles 250000,1000000 --steps 20 --json "$OUT/dfsph.json"
-# Drawing at 2M particles, 1920x1080, spheres, from the solver's buffers (floor 60 fps):
-# the dam break's 0.375 m^3 of water at spacing 0.00572 m is 2.0M particles.
-step 60 "$R" render dam_break_3d --backend gpu --set fluid.spacing=0.00572 --frames 2 --size 1920x1080 \
+# Drawing at 2M particles, 1920x1080, spheres, from the solver's buffers (floor 60 fps): the dam
+# break's 0.192 m^3 of water at spacing 0.004583 m is 1,994,475 particles (0.00572 m is 1.03M).
+step 60 "$R" render dam_break_3d --backend gpu --set fluid.spacing=0.004583 --frames 2 --size 1920x1080 \
   --style particles --out "$OUT/frame_2M.png" --time-draw 200
-step 45 "$R" render dam_break_3d --backend gpu --set fluid.spacing=0.00572 --frames 2 --size 1920x1080 \
+step 45 "$R" render dam_break_3d --backend gpu --set fluid.spacing=0.004583 --frames 2 --size 1920x1080 \
   --out "$OUT/frame_2M_surface.png" --time-draw 50

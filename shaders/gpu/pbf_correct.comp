@@ -3,8 +3,11 @@
 //   s_corr = -k (W(r)/W(dq))^n                                                                            (eq. 13)
 // then x_i + dx_i, stopped on a container wall plane (collision response), into pos_next: every
 // correction of an iteration reads the same positions. The fluid pairs come from the substep's
-// lists (pbf_list.comp), or the grid for a particle they could not hold.
+// lists (pbf_list.comp), or the grid for a particle they could not hold. When the solve's gate
+// is closed (pbf_gate.comp) it copies the positions along, since the host swaps the two
+// position buffers after every correction it queued.
 BUFFER_POS BUFFER_FKEY BUFFER_FSTART BUFFER_LAMBDA BUFFER_WGRAD BUFFER_POS_NEXT BUFFER_NLIST BUFFER_NCOUNT
+BUFFER_STATS
 uniform float inv_w_dq, k_corr;
 uniform int n_corr, use_lists;
 uniform uint list_stride, fluid_cap;
@@ -21,6 +24,10 @@ vec3 pair(vec3 xi, float li, uint j) {
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= P.fluid_count) return;
+  if (stats[RTSPH_STAT_GATE].x == 0.0lf) {
+    pos_next[i] = pos[i];
+    return;
+  }
   vec3 xi = pos[i].xyz;
   float li = lam[i].x;
   vec3 a = vec3(0.0);

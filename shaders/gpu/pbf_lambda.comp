@@ -8,9 +8,9 @@
 // Pbf::compute_lambda says why): half the mean of s_ij = -k (W/W(dq))^n weighted by the pairs'
 // virial x_ij.grad W_ij = r^2 G, the walls' samples (Psi_b/m) in the weights with no s_corr.
 // The pairs come from the substep's lists (pbf_list.comp), or the grid for a particle they
-// could not hold.
+// could not hold. Returns at once when the solve's gate is closed (pbf_gate.comp).
 BUFFER_POS BUFFER_DENS BUFFER_FKEY BUFFER_FSTART BUFFER_BPOS BUFFER_BSTART BUFFER_LAMBDA BUFFER_WGRAD
-BUFFER_NLIST BUFFER_BLIST BUFFER_NCOUNT
+BUFFER_NLIST BUFFER_BLIST BUFFER_NCOUNT BUFFER_STATS
 uniform float eps, omega_relax, inv_w_dq, k_corr;
 uniform int n_corr, with_share, use_lists;
 uniform uint list_stride, fluid_cap, boundary_cap;
@@ -48,7 +48,7 @@ void add_boundary(inout Sums s, vec3 xi, uint j) {
 
 void main() {
   uint i = gl_GlobalInvocationID.x;
-  if (i >= P.fluid_count) return;
+  if (i >= P.fluid_count || stats[RTSPH_STAT_GATE].x == 0.0lf) return;
   vec3 xi = pos[i].xyz;
   Sums s = Sums(0.0, 0.0, 0.0, 0.0, 0.0, vec3(0.0), vec3(0.0));
   uvec2 listed = use_lists != 0 ? ncount[i] : uvec2(0xffffffffu);

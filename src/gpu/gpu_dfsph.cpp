@@ -158,19 +158,6 @@ void GpuDfsph<D>::gate(int mode, int least, int most, double threshold) {
   gate_.dispatch_groups(1);
 }
 
-namespace {
-// The largest sum whose mean, sum / n in double, is still within the tolerance: the device then
-// tests sum > threshold, which decides exactly as the host's mean > tolerance did (the rounded
-// quotient grows with the sum), without a division on the device.
-double sum_threshold(double tolerance, std::size_t count) {
-  const double n = double(count);
-  double t = tolerance * n;
-  while (t / n > tolerance) t = std::nextafter(t, -HUGE_VAL);
-  while (std::nextafter(t, HUGE_VAL) / n <= tolerance) t = std::nextafter(t, HUGE_VAL);
-  return t;
-}
-}  // namespace
-
 // The CPU's Dfsph::solve: the warm start (a share of the last step's total, stored independent
 // of Δt), then relaxed Jacobi sweeps, Chebyshev-accelerated in clamped density solves, until the
 // mean error reaches the tolerance (at least two sweeps for density, one for divergence). The

@@ -28,6 +28,7 @@ GpuPbf<D>::GpuPbf(const SimSpec& spec, int threads) : GpuWorld<D>(spec, threads)
   vorticity_ = ComputeProgram("pbf_vorticity.comp", d);
   apply_ = ComputeProgram("pbf_apply.comp", d);
   list_ = ComputeProgram("pbf_list.comp", d);
+  gate_ = ComputeProgram("pbf_gate.comp", d);
   // The lists reach a skin past the support (kListSkin), so that the iterations sum the pairs a
   // grid walk would even after the corrections move them. Slots for 30% more neighbours than a
   // particle has within that reach in the rest lattice, and for as many wall samples as it has
@@ -106,6 +107,16 @@ double GpuPbf<D>::choose_time_step() {
 }
 
 template <int D>
+void GpuPbf<D>::gate(int mode, int least, int most, double threshold) {
+  this->bind_all();
+  gate_.set("mode", GLint(mode));
+  gate_.set("least", GLint(least));
+  gate_.set("most", GLint(most));
+  glProgramUniform1d(gate_.id(), glGetUniformLocation(gate_.id(), "threshold"), threshold);
+  gate_.dispatch_groups(1);
+}
+
+template <int D>
 void GpuPbf<D>::list_neighbours() {
   const std::size_t stride = this->capacity();
   const std::size_t fluid_bytes = stride * fluid_cap_ * sizeof(GLuint);
@@ -151,37 +162,54 @@ void GpuPbf<D>::solve_density_constraint(double) {
   }
   lambda_.set("boundary_cap", boundary_cap_);  // (bind_lists() sets the rest)
   // The CPU's loop (solvers/pbf.cpp): past solver.pbf.iterations while the mean compression the
-  // last λ pass measured is above solver.pbf.max_density_error. Each check reads 8 bytes back.
+  // last λ pass measured is above solver.pbf.max_density_error. The test runs on the device
+  // (pbf_gate.comp): the host queues as many iterations as the last substep took, then two at a
+  // time, and reads the gate back once per batch (32 bytes); the iterations queued after it
+  // closed return at once.
   const int least = std::max(1, s.pbf_iterations);
   const int most = std::max(least, s.pbf_max_iterations);
   const double tolerance = s.pbf_max_density_error;
-  iterations_ = 0;
-  for (;;) {
-    {
-      const auto timer = this->stage_timer(this->times_.density_s);
-      this->bind_all();
-      lambda_buf_.bind(RTSPH_B_LAMBDA);
-      wgrad_.bind(RTSPH_B_WGRAD);
-      bind_lists(lambda_);
-      lambda_.set("with_share", GLint(iterations_ == 0 ? 1 : 0));  // s_corr's share: first pass
-      lambda_.dispatch(n);
-    }
-    ++iterations_;
-    const bool check = tolerance > 0 && iterations_ >= least && iterations_ < most;
-    const double error = check ? this->mean_compression_now() : 0.0;
-    {
-      const auto timer = this->stage_timer(this->times_.forces_s);
-      this->bind_all();
-      lambda_buf_.bind(RTSPH_B_LAMBDA);
-      wgrad_.bind(RTSPH_B_WGRAD);
-      this->pos_alt_.bind(RTSPH_B_POS_NEXT);
-      bind_lists(correct_);
-      correct_.dispatch(n);
-      this->pos_.swap(this->pos_alt_);  // Jacobi: all move at once
-    }
-    if (iterations_ >= most) break;
-    if (iterations_ >= least && (tolerance <= 0 || error <= tolerance)) break;
+  if (n == 0) {  // no fluid yet: the CPU's loop sees no compression and stops at its minimum
+    iterations_ = least;
+    iteration_sum_ += iterations_;
+    ++solves_;
+    return;
   }
+  const double threshold = tolerance > 0 ? sum_threshold(tolerance, n) : -1.0;
+  gate(0);
+  int queued = 0;
+  int batch = std::clamp(iterations_, least, most);
+  glsl::dvec4 g{};
+  for (;;) {
+    for (int k = 0; k < batch && queued < most; ++k) {
+      {
+        const auto timer = this->stage_timer(this->times_.density_s);
+        this->bind_all();
+        lambda_buf_.bind(RTSPH_B_LAMBDA);
+        wgrad_.bind(RTSPH_B_WGRAD);
+        bind_lists(lambda_);
+        lambda_.set("with_share", GLint(queued == 0 ? 1 : 0));  // s_corr's share: first pass
+        lambda_.dispatch(n);
+      }
+      ++queued;
+      if (threshold >= 0 && queued >= least && queued < most) this->reduce_compression();
+      {
+        const auto timer = this->stage_timer(this->times_.forces_s);
+        this->bind_all();
+        lambda_buf_.bind(RTSPH_B_LAMBDA);
+        wgrad_.bind(RTSPH_B_WGRAD);
+        this->pos_alt_.bind(RTSPH_B_POS_NEXT);
+        bind_lists(correct_);
+        correct_.dispatch(n);
+        this->pos_.swap(this->pos_alt_);  // Jacobi: all move at once
+      }
+      gate(1, least, most, threshold);
+    }
+    g = this->read_stat(RTSPH_STAT_GATE);  // the one wait per batch
+    if (g.x == 0.0 || queued >= most) break;
+    batch = 2;
+  }
+  iterations_ = int(g.y);
   iteration_sum_ += iterations_;
   ++solves_;
 }

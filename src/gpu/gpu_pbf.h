@@ -18,16 +18,17 @@ class GpuPbf final : public GpuWorld<D> {
   /// Line 6: each particle's neighbours, listed once per substep for the iterations.
   void list_neighbours();
   void bind_lists(const ComputeProgram& prog) const;
+  void gate(int mode, int least = 0, int most = 0, double threshold = 0);  // pbf_gate.comp
   void add_method_stats(SimStats& s) const override;
 
-  ComputeProgram external_, copy_, lambda_, correct_, velocity_, xsph_, vorticity_, apply_, list_;
+  ComputeProgram external_, copy_, lambda_, correct_, velocity_, xsph_, vorticity_, apply_, list_, gate_;
   Buffer pred_, lambda_buf_, wgrad_, delta_, omega_;
   Buffer nlist_, blist_, ncount_;   // pbf_list.comp's lists (fluid, walls) and counts
   GLuint fluid_cap_ = 0, boundary_cap_ = 0;  // list slots per particle
   GLint64 max_block_bytes_ = 0;     // the largest storage block this GL allows
   bool lists_ = false;              // this substep's lists were built
   double lattice_gradient_norm_ = 0;  // Σⱼ|∇ⱼCᵢ|² inside the rest lattice (1/m²)
-  int iterations_ = 0;             // of the last substep
+  int iterations_ = 0;             // of the last substep (the next one's first batch)
   double iteration_sum_ = 0;       // over the substeps this object solved (not a resumed run's)
   std::uint64_t solves_ = 0;
 };

@@ -42,6 +42,11 @@ class GpuStageTimer {
   std::chrono::steady_clock::time_point t0_;
 };
 
+/// The largest sum whose mean over `count`, sum / count in double, is still within `tolerance`:
+/// a device-side stopping test that checks sum > threshold decides exactly as the host's
+/// mean > tolerance did (the rounded quotient grows with the sum), with no division there.
+double sum_threshold(double tolerance, std::size_t count);
+
 template <int D>
 class GpuWorld : public FluidWorld<D> {
  public:
@@ -83,9 +88,10 @@ class GpuWorld : public FluidWorld<D> {
   void density_and_pressure();                // ρ, p, p/ρ², 1/ρ (density.comp)
   void density_only();                        // ρ alone (FluidWorld::compute_density)
   void measure_density_error_gpu();           // max and mean compression, on the GPU
-  /// The mean compression of the densities now in the buffer, read back (8 bytes): PBF's
-  /// stopping check. Its own stats slot, so the step's reported figures stay the final ones.
-  double mean_compression_now();
+  /// The summed compression of the densities now in the buffer into stats slot
+  /// RTSPH_STAT_SOLVE (its .y), on the device: PBF's stopping test reads it there. Its own slot,
+  /// so the step's reported figures stay the final ones.
+  void reduce_compression() const;
   /// |g| times the fluid's extent along gravity (DFSPH's head speed squared), read back.
   double gpu_head();
   /// The sum of the solve buffer's error column (RTSPH_B_DFSPH_SOLVE, bound by the caller) into

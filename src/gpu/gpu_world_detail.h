@@ -11,7 +11,7 @@ namespace rtsph::gpu::detail {
 
 // Slots of the stats buffer (reduce.comp writes them).
 enum StatSlot : GLuint {
-  kExtremes = 0, kDensity = 1, kEnergy = 2, kRanges = 3, kRanges2 = 4, kSolve = 5, kHead = 6, kResidual = RTSPH_STAT_RESIDUAL,
+  kExtremes = 0, kDensity = 1, kEnergy = 2, kRanges = 3, kRanges2 = 4, kSolve = RTSPH_STAT_SOLVE, kHead = 6, kResidual = RTSPH_STAT_RESIDUAL,
   kGate = RTSPH_STAT_GATE, kSlots = 9
 };
 struct alignas(32) DVec4 { double x, y, z, w; };

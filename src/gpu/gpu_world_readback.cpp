@@ -55,12 +55,16 @@ template <int D>
 void GpuWorld<D>::measure_density_error_gpu() { reduce(1, kDensity); }
 
 template <int D>
-double GpuWorld<D>::mean_compression_now() {
-  reduce(1, kSolve);
-  DVec4 r{};
-  stats_.download(&r, sizeof r, kSolve * sizeof(DVec4));
-  const std::size_t n = this->fluid_.size();
-  return n ? r.y / double(n) : 0.0;
+void GpuWorld<D>::reduce_compression() const {
+  if (this->fluid_.size() > 0) reduce(1, kSolve);
+}
+
+double sum_threshold(double tolerance, std::size_t count) {
+  const double n = double(count);
+  double t = tolerance * n;
+  while (t / n > tolerance) t = std::nextafter(t, -HUGE_VAL);
+  while (std::nextafter(t, HUGE_VAL) / n <= tolerance) t = std::nextafter(t, HUGE_VAL);
+  return t;
 }
 
 // The first component of reduction `mode`'s result, read back (8 bytes), divided by `divide`.
@@ -304,7 +308,7 @@ void GpuWorld<D>::overwrite_fluid(const float* const* x, const float* const* v) 
   template void GpuWorld<D>::reduce(int, unsigned) const;                                \
   template GpuWorld<D>::Extremes GpuWorld<D>::gpu_max_speed_and_acceleration();         \
   template void GpuWorld<D>::measure_density_error_gpu();                                \
-  template double GpuWorld<D>::mean_compression_now();                                   \
+  template void GpuWorld<D>::reduce_compression() const;                                   \
   template double GpuWorld<D>::gpu_head();                                               \
   template double GpuWorld<D>::reduce_first(int, unsigned, double);                      \
   template void GpuWorld<D>::reduce_solve_error() const;                                 \

@@ -56,7 +56,9 @@ struct alignas(32) dvec4 { double x, y, z, w; };
 #define RTSPH_B_BKEY 30      // uint: cell key of each boundary sample (sorted)
 #define RTSPH_B_STATS 31     // dvec4 results of the reductions (gpu_world_detail.h, StatSlot)
 // Stats slots a pass reads on the device (the others are the host's; gpu_world_detail.h):
-// DFSPH's residual sum (reduce.comp mode 6), and the gate of its stopping test (dfsph_gate.comp).
+// PBF's summed compression (reduce.comp mode 1), DFSPH's residual sum (mode 6), and the gate of
+// either method's stopping test (pbf_gate.comp, dfsph_gate.comp; a world runs one method).
+#define RTSPH_STAT_SOLVE 5
 #define RTSPH_STAT_RESIDUAL 7
 #define RTSPH_STAT_GATE 8
 #define RTSPH_BINDINGS 32

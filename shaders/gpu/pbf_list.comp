@@ -6,14 +6,18 @@
 // at its current positions, so it sums what a grid walk would as long as no pair closes by more
 // than the skin within the substep. Slot-major (slot k of particle i at k*list_stride + i), so a
 // warp's loads of one slot are contiguous. A particle with more neighbours than its slots keeps
-// its count, and the passes walk the grid for it instead.
+// its count, and the passes walk the grid for it instead. It also keeps x* for the velocity
+// update (pred; copy_positions.comp's work, one dispatch fewer).
 BUFFER_POS BUFFER_FKEY BUFFER_FSTART BUFFER_BPOS BUFFER_BSTART BUFFER_NLIST BUFFER_BLIST BUFFER_NCOUNT
+BUFFER_PRED
 uniform uint list_stride, fluid_cap, boundary_cap;
 uniform float reach2;
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= P.fluid_count) return;
-  vec3 xi = pos[i].xyz;
+  vec4 x4 = pos[i];
+  pred[i] = x4;
+  vec3 xi = x4.xyz;
   uint key = fkey[i];
   uint nf = 0u, nb = 0u;
   for (int r = 0; r < stencil_count(); ++r) {

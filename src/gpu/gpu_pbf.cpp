@@ -60,17 +60,19 @@ void GpuPbf<D>::step() {
     this->kick_drift();                            // v += Δt a; x* = x + Δt v, walls (line 3)
     this->advance_scene_gpu(this->time_ + dt, dt); // obstacles, emitters
   }
-  {
-    const auto timer = this->stage_timer(this->times_.neighbours_s);
-    this->sort_particles();                        // lines 5-7
-    list_neighbours();
-  }
   const std::size_t n = this->fluid_.size();
   for (Buffer* b : {&pred_, &wgrad_, &delta_, &omega_}) b->reserve(this->capacity() * 16);
   lambda_buf_.reserve(this->capacity() * 8);
-  this->bind_all();
-  pred_.bind(RTSPH_B_PRED);
-  copy_.dispatch(n);                               // x*, kept for the velocity update
+  {
+    const auto timer = this->stage_timer(this->times_.neighbours_s);
+    this->sort_particles();                        // lines 5-7
+    list_neighbours();                             // and x*, kept for the velocity update
+  }
+  if (!lists_) {
+    this->bind_all();
+    pred_.bind(RTSPH_B_PRED);
+    copy_.dispatch(n);                             // x*, kept for the velocity update
+  }
   solve_density_constraint(dt);                    // lines 8-19
   {
     const auto timer = this->stage_timer(this->times_.integrate_s);
@@ -130,6 +132,7 @@ void GpuPbf<D>::list_neighbours() {
   if (!lists_) return;
   this->bind_all();
   bind_lists(list_);
+  pred_.bind(RTSPH_B_PRED);
   list_.set("boundary_cap", boundary_cap_);
   const double reach = kListSkin * this->prm_.support;
   list_.set("reach2", float(reach * reach));

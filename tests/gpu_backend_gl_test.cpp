@@ -175,6 +175,33 @@ TEST_F(GpuBackend, FreeBlockConservesMomentum) {
   EXPECT_EQ(gpu->stats().particles_put_back, 0u);
 }
 
+// The counting sort ranks each cell's particles by their previous index (cell_sort_order.comp),
+// which is quadratic in a cell's count: a cell with more than 4096 keeps the atomics' order. Two
+// piles, 3,000 particles on one point (ranked) and 5,000 on another (not), must still sort into
+// a permutation of the fluid, and step.
+TEST_F(GpuBackend, SortSurvivesPilesOfParticlesInOneCell) {
+  SimSpec spec = test::dam_break_2d(0.2, 0.002);
+  spec.speed_of_sound = 20;
+  auto gpu = gpu::make_gpu_simulation(spec, 1);
+  const ParticleView v0 = gpu->fluid();
+  ASSERT_GT(v0.count, 9000u);
+  std::vector<float> x(v0.x[0], v0.x[0] + v0.count), y(v0.x[1], v0.x[1] + v0.count);
+  for (std::size_t i = 0; i < 3000; ++i) { x[i] = 0.05f; y[i] = 0.05f; }
+  for (std::size_t i = 3000; i < 8000; ++i) { x[i] = 0.15f; y[i] = 0.15f; }
+  std::vector<float> z(v0.count, 0.0f);
+  const float* xp[3] = {x.data(), y.data(), z.data()};
+  gpu->overwrite_fluid(xp, nullptr);
+  gpu->step();
+  const ParticleView v = gpu->fluid();
+  ASSERT_EQ(v.count, v0.count);
+  std::vector<int> seen(v.count, 0);
+  for (std::size_t i = 0; i < v.count; ++i) {
+    ASSERT_LT(v.id[i], v.count);
+    ++seen[v.id[i]];
+  }
+  EXPECT_EQ(std::count(seen.begin(), seen.end(), 1), std::ptrdiff_t(v.count));
+}
+
 // A box moving through still water drags it along: the fluid's mean velocity follows the box on
 // the GPU as on the CPU.
 TEST_F(GpuBackend, MovingObstaclePushesTheFluid) {

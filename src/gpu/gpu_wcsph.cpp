@@ -48,7 +48,7 @@ template <int D>
 void GpuWcsph<D>::update_forces() {
   {
     const auto timer = this->stage_timer(this->times_.neighbours_s);
-    this->sort_particles();             // stable radix sort by cell (sort.h)
+    this->sort_particles();             // counting sort by cell (sort.h)
   }
   this->shift_particles_gpu(this->dt_);  // optional (solver.shifting), the last step's Δt
   {

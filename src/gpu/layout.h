@@ -15,11 +15,8 @@ struct alignas(16) ivec4 { std::int32_t x, y, z, w; };
 struct alignas(32) dvec4 { double x, y, z, w; };
 #endif
 
-// Threads per workgroup of every per-particle pass. The radix sort's blocks are one element per
-// thread, so RTSPH_WG also sets its block size.
+// Threads per workgroup of every per-particle pass (and the prefix scan's block size).
 #define RTSPH_WG 256
-#define RTSPH_RADIX_BITS 8
-#define RTSPH_RADIX 256
 
 // Shader storage bindings. Fluid arrays are in cell order after each sort.
 #define RTSPH_B_POS 0        // vec4: x (m), w unused

@@ -17,13 +17,12 @@ GLuint blocks_of(std::size_t n) { return GLuint((n + RTSPH_WG - 1) / RTSPH_WG); 
 }  // namespace
 
 CellSorter::CellSorter(const std::vector<std::string>& defines)
-    : keys_("keys.comp", defines),
-      count_("radix_count.comp", defines),
-      scatter_("radix_scatter.comp", defines),
+    : count_("cell_sort_count.comp", defines),
+      scatter_("cell_sort_scatter.comp", defines),
+      order_("cell_sort_order.comp", defines),
       scan_block_("scan_block.comp", defines),
       scan_add_("scan_add.comp", defines),
       cell_count_("cell_count.comp", defines) {
-  static_assert(RTSPH_WG == RTSPH_RADIX, "radix_count.comp gives each digit one thread");
   // Sized once: the recursion holds references into it. Four levels scan 256^4 values.
   scan_sums_.resize(4);
   for (int c = 0; c < 4; ++c) {
@@ -33,53 +32,43 @@ CellSorter::CellSorter(const std::vector<std::string>& defines)
   }
 }
 
+// A counting sort: cells counted (atomics that only count, and a provisional rank), an
+// exclusive scan of the counts (which is also the start array), a scatter to the provisional
+// slots, and each cell put in the order of the particles' previous indices. Five dispatches and
+// the scan's two or three, where the radix sort it replaced took ~20 (a dispatch costs ~20 µs
+// on an H100 under GL even with no work; docs/performance.md).
 void CellSorter::sort(const Buffer& positions, std::size_t n, std::size_t cells, SortedCells& out) {
   const std::size_t bytes = std::max<std::size_t>(n, 1) * 4;
   out.keys.reserve(bytes);
   out.order.reserve(bytes);
   keys_tmp_.reserve(bytes);
   vals_tmp_.reserve(bytes);
+  unordered_.reserve(bytes);
+  out.start.reserve((cells + 1) * 4);
+  out.start.fill_zero();
   if (n > 0) {
     positions.bind(RTSPH_B_GATHER_IN0);
-    out.keys.bind(RTSPH_B_KEYS_IN);
-    out.order.bind(RTSPH_B_VALS_IN);
-    keys_.set("n", GLuint(n));
-    keys_.dispatch(n);
-    // Digits needed for the largest key, cells - 1.
-    int passes = 0;
-    for (std::size_t top = cells > 0 ? cells - 1 : 0; top > 0; top >>= RTSPH_RADIX_BITS) ++passes;
-    const GLuint blocks = blocks_of(n);
-    counts_.reserve(std::size_t(RTSPH_RADIX) * blocks * 4);
-    for (int pass = 0; pass < passes; ++pass) {
-      // Ping-pong: even passes read out.*, odd passes read the scratch pair.
-      Buffer& kin = pass % 2 == 0 ? out.keys : keys_tmp_;
-      Buffer& vin = pass % 2 == 0 ? out.order : vals_tmp_;
-      Buffer& kout = pass % 2 == 0 ? keys_tmp_ : out.keys;
-      Buffer& vout = pass % 2 == 0 ? vals_tmp_ : out.order;
-      const GLuint shift = GLuint(pass * RTSPH_RADIX_BITS);
-      kin.bind(RTSPH_B_KEYS_IN);
-      counts_.bind(RTSPH_B_COUNTS);
-      count_.set("n", GLuint(n));
-      count_.set("shift", shift);
-      count_.set("blocks", blocks);
-      count_.dispatch_groups(blocks);
-      scan(counts_, std::size_t(RTSPH_RADIX) * blocks, 0);
-      kin.bind(RTSPH_B_KEYS_IN);
-      vin.bind(RTSPH_B_VALS_IN);
-      kout.bind(RTSPH_B_KEYS_OUT);
-      vout.bind(RTSPH_B_VALS_OUT);
-      counts_.bind(RTSPH_B_COUNTS);
-      scatter_.set("n", GLuint(n));
-      scatter_.set("shift", shift);
-      scatter_.set("blocks", blocks);
-      scatter_.dispatch_groups(blocks);
-    }
-    if (passes % 2 == 1) {
-      out.keys.swap(keys_tmp_);
-      out.order.swap(vals_tmp_);
-    }
+    keys_tmp_.bind(RTSPH_B_KEYS_IN);
+    vals_tmp_.bind(RTSPH_B_VALS_IN);
+    out.start.bind(RTSPH_B_SCAN);
+    count_.set("n", GLuint(n));
+    count_.dispatch(n);
   }
-  cell_starts(n, cells, out);
+  scan(out.start, cells + 1, 0);
+  if (n == 0) return;
+  keys_tmp_.bind(RTSPH_B_KEYS_IN);
+  vals_tmp_.bind(RTSPH_B_VALS_IN);
+  out.start.bind(RTSPH_B_SCAN);
+  out.keys.bind(RTSPH_B_KEYS_OUT);
+  unordered_.bind(RTSPH_B_VALS_OUT);
+  scatter_.set("n", GLuint(n));
+  scatter_.dispatch(n);
+  out.keys.bind(RTSPH_B_KEYS_OUT);
+  unordered_.bind(RTSPH_B_VALS_OUT);
+  out.start.bind(RTSPH_B_SCAN);
+  out.order.bind(RTSPH_B_COUNTS);
+  order_.set("n", GLuint(n));
+  order_.dispatch(n);
 }
 
 void CellSorter::cell_starts(std::size_t n, std::size_t cells, SortedCells& out) {

@@ -1,9 +1,9 @@
 #pragma once
-// Sorting particles into the neighbour grid's cells on the GPU (Green 2008; Hoetzlein 2014):
-// cell keys, a stable LSD radix sort of (key, index) with counted ranks, and each cell's first
-// particle by counting and an exclusive scan. Stable and free of order-deciding atomics, so the
-// order, and every sum that follows it, is the same on every run, and equals the CPU's stable
-// counting sort (core/grid.cpp) for the same keys.
+// Sorting particles into the neighbour grid's cells on the GPU (Green 2008; Hoetzlein 2014): a
+// counting sort by cell key (counts, an exclusive scan that is also each cell's first particle,
+// a scatter), with each cell then ordered by the particles' previous indices. No atomic decides
+// the final order, so it, and every sum that follows it, is the same on every run, and equals
+// the CPU's stable counting sort (core/grid.cpp) for the same keys.
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -37,9 +37,9 @@ class CellSorter {
 
  private:
   void scan(Buffer& data, std::size_t m, std::size_t level);
-  ComputeProgram keys_, count_, scatter_, scan_block_, scan_add_, cell_count_;
+  ComputeProgram count_, scatter_, order_, scan_block_, scan_add_, cell_count_;
   ComputeProgram gather_[4], gather_uint_[4];
-  Buffer keys_tmp_, vals_tmp_, counts_;
+  Buffer keys_tmp_, vals_tmp_, unordered_;
   std::vector<Buffer> scan_sums_;
 };
 

@@ -46,6 +46,20 @@ SimSpec dam_break_3d(double a, double spacing) {
   return s;
 }
 
+// Iteration counts of the two backends' solves, step by step: how many steps differ, and how
+// the GPU's count moved (a stopping test on the device must see both rises and falls).
+struct IterationTally {
+  int differ = 0, rises = 0, falls = 0, last = -1, most = 0;
+  bool add(int cpu, int gpu) {
+    if (last >= 0 && gpu > last) ++rises;
+    if (last >= 0 && gpu < last) ++falls;
+    last = gpu;
+    most = std::max(most, gpu);
+    if (cpu == gpu) return true;
+    ++differ;
+    return false;
+  }
+};
 }  // namespace
 
 TEST_F(GpuBackend, EveryComputeShaderCompilesForEveryDimensionAndKernel) {
@@ -344,29 +358,26 @@ TEST_F(GpuBackend, DfsphStopsEachSolveWhereTheCpuDoes) {
   spec.dfsph_max_divergence_error = 2e-4;
   auto cpu = make_simulation(spec, 1);
   auto gpu = gpu::make_gpu_simulation(spec, 1);
-  int differ = 0, rises = 0, falls = 0, last = -1, most = 0;
+  IterationTally t;
   for (int s = 0; s < 40; ++s) {
     cpu->step();
     gpu->step();
     const SimStats c = cpu->stats(), g = gpu->stats();
-    if (c.pressure_iterations != g.pressure_iterations || c.divergence_iterations != g.divergence_iterations) {
-      ++differ;
+    const bool same = t.add(c.pressure_iterations, g.pressure_iterations);
+    if (!same || c.divergence_iterations != g.divergence_iterations) {
+      if (same) ++t.differ;
       std::printf("step %d: sweeps %d + %d (CPU), %d + %d (GPU)\n", s, c.pressure_iterations,
                   c.divergence_iterations, g.pressure_iterations, g.divergence_iterations);
     }
-    if (last >= 0 && g.pressure_iterations > last) ++rises;
-    if (last >= 0 && g.pressure_iterations < last) ++falls;
-    last = g.pressure_iterations;
-    most = std::max(most, g.pressure_iterations);
   }
   std::printf("40 steps: %d with other sweep counts than the CPU's; the density solve's count rose %d "
-              "and fell %d times, at most %d sweeps\n", differ, rises, falls, most);
+              "and fell %d times, at most %d sweeps\n", t.differ, t.rises, t.falls, t.most);
   // The two backends' residuals differ by float round-off, so a solve that ends within round-off
   // of its tolerance may take one sweep more on one of them; never more than once here.
-  EXPECT_LE(differ, 1);
-  EXPECT_GT(rises, 0);
-  EXPECT_GT(falls, 0);
-  EXPECT_GT(most, 4);  // past the first batch of two
+  EXPECT_LE(t.differ, 1);
+  EXPECT_GT(t.rises, 0);
+  EXPECT_GT(t.falls, 0);
+  EXPECT_GT(t.most, 4);  // past the first batch of two
 }
 
 // PBF's stopping rule runs on the device too (pbf_gate.comp): each substep must still take the
@@ -383,28 +394,22 @@ TEST_F(GpuBackend, PbfStopsEachSubstepWhereTheCpuDoes) {
   spec.pbf_max_iterations = 40;
   auto cpu = make_simulation(spec, 1);
   auto gpu = gpu::make_gpu_simulation(spec, 1);
-  int differ = 0, rises = 0, falls = 0, last = -1, most = 0;
+  IterationTally t;
   for (int s = 0; s < 25; ++s) {
     cpu->step();
     gpu->step();
     const SimStats c = cpu->stats(), g = gpu->stats();
-    if (c.pressure_iterations != g.pressure_iterations) {
-      ++differ;
+    if (!t.add(c.pressure_iterations, g.pressure_iterations))
       std::printf("substep %d: %d iterations (CPU), %d (GPU)\n", s, c.pressure_iterations, g.pressure_iterations);
-    }
-    if (last >= 0 && g.pressure_iterations > last) ++rises;
-    if (last >= 0 && g.pressure_iterations < last) ++falls;
-    last = g.pressure_iterations;
-    most = std::max(most, g.pressure_iterations);
   }
   std::printf("25 substeps: %d with other iteration counts than the CPU's; the count rose %d and "
-              "fell %d times, at most %d iterations\n", differ, rises, falls, most);
+              "fell %d times, at most %d iterations\n", t.differ, t.rises, t.falls, t.most);
   // The backends' compressions differ by float round-off: a substep that ends within it of the
   // tolerance may take one iteration more on one of them, rarely.
-  EXPECT_LE(differ, 1);
-  EXPECT_GT(rises, 0);
-  EXPECT_GT(falls, 0);
-  EXPECT_GT(most, 4);  // past the first batch
+  EXPECT_LE(t.differ, 1);
+  EXPECT_GT(t.rises, 0);
+  EXPECT_GT(t.falls, 0);
+  EXPECT_GT(t.most, 4);  // past the first batch
 }
 
 // Drawing without a copy (issue 10, §3): the renderer pointed at the GPU's own buffers draws the

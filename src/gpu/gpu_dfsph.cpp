@@ -150,12 +150,7 @@ void GpuDfsph<D>::residual(bool density, double dt) {
 
 template <int D>
 void GpuDfsph<D>::gate(int mode, int least, int most, double threshold) {
-  this->bind_all();
-  gate_.set("mode", GLint(mode));
-  gate_.set("least", GLint(least));
-  gate_.set("most", GLint(most));
-  glProgramUniform1d(gate_.id(), glGetUniformLocation(gate_.id(), "threshold"), threshold);
-  gate_.dispatch_groups(1);
+  this->run_gate(gate_, mode, least, most, threshold);
 }
 
 // The CPU's Dfsph::solve: the warm start (a share of the last step's total, stored independent

@@ -110,12 +110,7 @@ double GpuPbf<D>::choose_time_step() {
 
 template <int D>
 void GpuPbf<D>::gate(int mode, int least, int most, double threshold) {
-  this->bind_all();
-  gate_.set("mode", GLint(mode));
-  gate_.set("least", GLint(least));
-  gate_.set("most", GLint(most));
-  glProgramUniform1d(gate_.id(), glGetUniformLocation(gate_.id(), "threshold"), threshold);
-  gate_.dispatch_groups(1);
+  this->run_gate(gate_, mode, least, most, threshold);
 }
 
 template <int D>

@@ -97,6 +97,9 @@ class GpuWorld : public FluidWorld<D> {
   /// The sum of the solve buffer's error column (RTSPH_B_DFSPH_SOLVE, bound by the caller) into
   /// stats slot RTSPH_STAT_RESIDUAL, on the device: DFSPH's stopping test reads it there.
   void reduce_solve_error() const;
+  /// Runs a method's stopping-test gate (pbf_gate.comp, dfsph_gate.comp: the same uniforms) on
+  /// one thread: `mode`, the iteration bounds and the threshold its sum is tested against.
+  void run_gate(const ComputeProgram& gate, int mode, int least, int most, double threshold) const;
   /// One slot of the stats buffer, read back (32 bytes).
   glsl::dvec4 read_stat(unsigned slot) const;
   /// The mean density over the fluid, read back.

@@ -92,6 +92,17 @@ void GpuWorld<D>::reduce_solve_error() const {
 }
 
 template <int D>
+void GpuWorld<D>::run_gate(const ComputeProgram& gate, int mode, int least, int most,
+                           double threshold) const {
+  bind_all();
+  gate.set("mode", GLint(mode));
+  gate.set("least", GLint(least));
+  gate.set("most", GLint(most));
+  glProgramUniform1d(gate.id(), glGetUniformLocation(gate.id(), "threshold"), threshold);
+  gate.dispatch_groups(1);
+}
+
+template <int D>
 glsl::dvec4 GpuWorld<D>::read_stat(unsigned slot) const {
   glsl::dvec4 r{};
   stats_.download(&r, sizeof r, slot * sizeof(DVec4));
@@ -309,6 +320,7 @@ void GpuWorld<D>::overwrite_fluid(const float* const* x, const float* const* v) 
   template GpuWorld<D>::Extremes GpuWorld<D>::gpu_max_speed_and_acceleration();         \
   template void GpuWorld<D>::measure_density_error_gpu();                                \
   template void GpuWorld<D>::reduce_compression() const;                                   \
+  template void GpuWorld<D>::run_gate(const ComputeProgram&, int, int, int, double) const;                                   \
   template double GpuWorld<D>::gpu_head();                                               \
   template double GpuWorld<D>::reduce_first(int, unsigned, double);                      \
   template void GpuWorld<D>::reduce_solve_error() const;                                 \

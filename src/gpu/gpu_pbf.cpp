@@ -128,7 +128,6 @@ void GpuPbf<D>::list_neighbours() {
   this->bind_all();
   bind_lists(list_);
   pred_.bind(RTSPH_B_PRED);
-  list_.set("boundary_cap", boundary_cap_);
   const double reach = kListSkin * this->prm_.support;
   list_.set("reach2", float(reach * reach));
   list_.dispatch(this->fluid_.size());
@@ -142,6 +141,7 @@ void GpuPbf<D>::bind_lists(const ComputeProgram& prog) const {
   prog.set("use_lists", GLint(lists_ ? 1 : 0));
   prog.set("list_stride", GLuint(this->capacity()));
   prog.set("fluid_cap", fluid_cap_);
+  prog.set("boundary_cap", boundary_cap_);  // (not every pass reads the walls' list)
 }
 
 template <int D>
@@ -158,7 +158,6 @@ void GpuPbf<D>::solve_density_constraint(double) {
     prog->set("k_corr", Real(s.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30)));
     prog->set("n_corr", GLint(s.pbf_scorr_n));
   }
-  lambda_.set("boundary_cap", boundary_cap_);  // (bind_lists() sets the rest)
   // The CPU's loop (solvers/pbf.cpp): past solver.pbf.iterations while the mean compression the
   // last λ pass measured is above solver.pbf.max_density_error. The test runs on the device
   // (pbf_gate.comp): the host queues as many iterations as the last substep took, then two at a
@@ -233,7 +232,6 @@ void GpuPbf<D>::xsph_and_vorticity(double dt) {
   xsph_.set("xsph_c", Real(s.pbf_xsph));
   xsph_.set("vorticity", GLint(vort ? 1 : 0));
   bind_lists(xsph_);
-  xsph_.set("boundary_cap", boundary_cap_);
   xsph_.dispatch(n);
   this->dens_.swap(dens_next);
   if (vort) {

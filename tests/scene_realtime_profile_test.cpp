@@ -2,6 +2,9 @@
 // starting fluid fits the per-thread budget; unmarked scenes (validation) run as written.
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <string>
+
 #include "scene/realtime_profile.h"
 #include "scene/scene.h"
 #include "solvers/geometry.h"
@@ -67,6 +70,47 @@ TEST(RealtimeProfile, MoreSubstepsGetFewerParticles) {
   EXPECT_DOUBLE_EQ(realtime_budget(two, 2), 2 * realtime_budget(two, 1));
   // The measured point: one thread keeps the 3D dam break's 10,350 particles in real time.
   EXPECT_GE(realtime_profile(two, 1).fluid_particles, 10000);
+}
+
+// The viewer budgets with the rate it measured on its machine: the budget is proportional to
+// it, and the profile says which rate it used.
+TEST(RealtimeProfile, AMeasuredRateScalesTheBudget) {
+  const SimSpec scene = load_scene("dam_break_3d");
+  const double reference = realtime_particle_substeps_per_thread(3);
+  const RealtimeProfile ref = realtime_profile(scene, 1);
+  EXPECT_FALSE(ref.measured);
+  EXPECT_DOUBLE_EQ(ref.rate_per_thread, reference);
+  const RealtimeProfile slow = realtime_profile(scene, 1, 0.4 * reference);
+  EXPECT_TRUE(slow.measured);
+  EXPECT_DOUBLE_EQ(slow.budget, 0.4 * ref.budget);
+  EXPECT_LE(slow.fluid_particles, slow.budget);
+  EXPECT_GT(slow.spec.spacing, ref.spec.spacing);
+  EXPECT_NE(slow.describe().find("measured on this machine"), std::string::npos);
+}
+
+// A measurement is a share of the calm rate, and one wild figure cannot empty or swamp a scene.
+TEST(RealtimeProfile, CalibratedRateIsAShareWithinBounds) {
+  const double reference = realtime_particle_substeps_per_thread(3);
+  EXPECT_DOUBLE_EQ(calibrated_rate(reference, 3), realtime_calm_share(3) * reference);
+  EXPECT_DOUBLE_EQ(calibrated_rate(1.0, 3), reference / 16);
+  EXPECT_DOUBLE_EQ(calibrated_rate(1e12, 3), 2 * reference);
+  EXPECT_DOUBLE_EQ(calibrated_rate(0.0, 2), realtime_particle_substeps_per_thread(2));  // no figure
+  EXPECT_DOUBLE_EQ(calibrated_rate(std::nan(""), 2), realtime_particle_substeps_per_thread(2));
+}
+
+// The measurement steps the profiled scene itself (a coarse one here) and gives a positive,
+// finite rate (its size is the machine's, so nothing more is asserted).
+TEST(RealtimeProfile, MeasuringTheMachineStepsTheScene) {
+  SimSpec scene = load_scene("dam_break_2d");
+  apply_override(scene, "fluid.spacing=0.05");
+  const RealtimeProfile p = realtime_profile(scene, 1);
+  const double rate = measure_particle_substeps_per_thread(p.spec, 1, 0.01);
+  EXPECT_TRUE(std::isfinite(rate));
+  EXPECT_GT(rate, 0);
+  // An empty scene (a nozzle before it emits) has nothing to measure: 0, and the reference rate.
+  SimSpec empty = load_scene("nozzle_obstacle_2d");
+  ASSERT_EQ(count_particles(empty).fluid, 0);
+  EXPECT_EQ(measure_particle_substeps_per_thread(realtime_profile(empty, 1).spec, 1, 0.01), 0);
 }
 
 TEST(RealtimeProfile, MoreThreadsGiveAFinerSpacing) {

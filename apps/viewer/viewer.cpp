@@ -96,7 +96,12 @@ SimSpec Viewer::for_viewer(const SimSpec& scene, const std::vector<std::string>&
     profile_text_ = scene_spec_.viewer_realtime ? "as written (real-time profile off)" : "as written";
     return scene_spec_;
   }
-  const RealtimeProfile p = realtime_profile(scene_spec_, threads_);
+  // The budget is this machine's: a fixed one (the reference machine's) ran a slower machine's
+  // dam break at half its real speed.
+  double rate = opt_.realtime_rate;
+  if (rate <= 0 && scene_spec_.viewer_realtime && scene_spec_.backend != "gpu" && opt_.backend != "gpu")
+    rate = machine_rate(scene_spec_.dimension);
+  const RealtimeProfile p = realtime_profile(scene_spec_, threads_, rate);
   profile_text_ = p.describe();
   SimSpec out = p.spec;
   // The user's own overrides win over the profile's choices; the line says so, as a --set
@@ -104,6 +109,25 @@ SimSpec Viewer::for_viewer(const SimSpec& scene, const std::vector<std::string>&
   for (const auto& a : sets) apply_override(out, a);
   if (!sets.empty()) profile_text_ += fmt::format("; then --set {}", fmt::join(sets, ", --set "));
   return out;
+}
+
+// Measured once per dimension, on the built-in dam break's profile at the reference budget:
+// the workload the reference rate was measured on (a scene of its own may start empty).
+double Viewer::machine_rate(int dimension) {
+  double& rate = machine_rate_[std::clamp(dimension, 0, 3)];
+  if (rate > 0) return rate;
+  const SimSpec dam = load_scene(dimension == 3 ? "dam_break_3d" : "dam_break_2d");
+  const RealtimeProfile reference = realtime_profile(dam, threads_);
+  const double t0 = now_s();
+  const double measured = measure_particle_substeps_per_thread(reference.spec, threads_, 0.4);
+  rate = calibrated_rate(measured, dimension);
+  std::fprintf(stderr,
+               "rtsph view: this machine steps %.3g fluid particle-substeps/s per solver thread (%s, PBF, "
+               "%.0f particles from rest, %.1f s); the real-time profile budgets %.3g (%.0f%%, at most twice "
+               "the reference machine's %.3g)\n",
+               measured, dam.name.c_str(), reference.fluid_particles, now_s() - t0, rate,
+               100 * realtime_calm_share(dimension), realtime_particle_substeps_per_thread(dimension));
+  return rate;
 }
 
 void Viewer::load(const SimSpec& spec, bool reframe) {
@@ -303,8 +327,14 @@ int Viewer::run() {
   threads_ = opt_.threads >= 0 ? opt_.threads : std::max(1, hw - 1);
   if (threads_ == 0) threads_ = std::max(1, hw);
   realtime_ = !opt_.accurate;
-  SimSpec spec = for_viewer(load_scene(opt_.scene), opt_.sets);
+  const SimSpec scene = load_scene(opt_.scene);
   if (!opt_.script.empty()) script_ = load_script(opt_.script);
+  // Before the profile: without a display there is nothing to measure the machine for.
+  if (!have_display()) {
+    std::fprintf(stderr, "rtsph view: no display (DISPLAY / WAYLAND_DISPLAY unset); use `rtsph render` for headless output\n");
+    return 1;
+  }
+  SimSpec spec = for_viewer(scene, opt_.sets);
   settings_ = parse_render_options(opt_.style, opt_.color, opt_.display, opt_.colormap);
   settings_.time_passes = opt_.time_passes;
   gas_defaults(spec, opt_.style_given, opt_.color_given, &settings_);
@@ -312,10 +342,6 @@ int Viewer::run() {
   if (!parse_size(opt_.size, &w, &h))
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", opt_.size));
 
-  if (!have_display()) {
-    std::fprintf(stderr, "rtsph view: no display (DISPLAY / WAYLAND_DISPLAY unset); use `rtsph render` for headless output\n");
-    return 1;
-  }
   leave_llvmpipe_spare_cores(spec);
   switch (create_window()) {
     case WindowResult::Ok: break;

@@ -40,6 +40,9 @@ struct ViewOptions {
   long max_frames = 0;
   bool report = false;
   bool accurate = false;   // run scenes as written, not their real-time profile
+  // The real-time profile's rate (fluid particle-substeps/s per solver thread); 0: measured on
+  // this machine when the first profiled scene of a dimension loads.
+  double realtime_rate = 0;
   float render_scale = 0;  // 0: adapt to keep ≥ 30 fps; else fixed fraction of the window
   bool time_passes = false;  // print each stage's and surface pass's CPU time (with --report)
   std::string backend;     // cpu, gpu, auto; empty: the scene's solver.backend, else auto
@@ -112,6 +115,8 @@ class Viewer {
   bool realtime_ = true;
   int threads_ = 1;
   std::string profile_text_;
+  double machine_rate_[4] = {};  // by dimension: calibrated_rate of this machine's, once measured
+  double machine_rate(int dimension);
   bool edit_pending_ = false;
   SimFrame frame_;
   std::uint64_t generation_ = ~0ull;

@@ -3,10 +3,14 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <memory>
+#include <vector>
 
 #include "scene/scene.h"
 #include "solvers/geometry.h"
+#include "solvers/simulation.h"
 
 namespace rtsph {
 
@@ -20,18 +24,50 @@ double realtime_particle_substeps_per_thread(int dimension) {
   return dimension == 3 ? 10500.0 * 120 : 4000.0 * 240;
 }
 
-double realtime_budget(const SimSpec& pbf_spec, int solver_threads) {
+double realtime_budget(const SimSpec& pbf_spec, int solver_threads, double rate_per_thread) {
   const double substeps_per_s = std::max(1, pbf_spec.pbf_substeps) / pbf_spec.pbf_time_step;
-  return realtime_particle_substeps_per_thread(pbf_spec.dimension) * std::max(1, solver_threads) /
-         substeps_per_s;
+  const double rate = rate_per_thread > 0 ? rate_per_thread
+                                          : realtime_particle_substeps_per_thread(pbf_spec.dimension);
+  return rate * std::max(1, solver_threads) / substeps_per_s;
+}
+
+double measure_particle_substeps_per_thread(const SimSpec& profile_spec, int threads, double wall_s) {
+  SimSpec spec = profile_spec;
+  spec.backend = "cpu";
+  const std::unique_ptr<Simulation> sim = make_simulation(spec, threads);
+  const double fluid = double(sim->stats().fluid_particles);
+  if (fluid <= 0) return 0;
+  using clock = std::chrono::steady_clock;
+  sim->step();  // the first substep sizes the scratch; not timed
+  std::vector<double> times;
+  const auto start = clock::now();
+  while (times.size() < 5 || (times.size() < 200 && std::chrono::duration<double>(clock::now() - start).count() < wall_s)) {
+    const auto t0 = clock::now();
+    sim->step();
+    times.push_back(std::chrono::duration<double>(clock::now() - t0).count());
+  }
+  // The median: a shared machine's hiccup moves the mean of so few substeps.
+  std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
+  const double t = std::max(times[times.size() / 2], 1e-9);
+  return fluid / t / std::max(1, threads);
+}
+
+double realtime_calm_share(int dimension) { return dimension == 3 ? 0.75 : 0.6; }
+
+double calibrated_rate(double measured_per_thread, int dimension) {
+  const double reference = realtime_particle_substeps_per_thread(dimension);
+  if (!(measured_per_thread > 0)) return reference;
+  return std::clamp(realtime_calm_share(dimension) * measured_per_thread, reference / 16, 2 * reference);
 }
 
 std::string RealtimeProfile::describe() const {
   if (!applied) return "as written";
   return fmt::format("real-time profile: pbf ({}-{} iterations), fluid.spacing {:.4g} m, {:.0f} fluid "
-                     "particles at most, emitters included (budget {:.0f})",
+                     "particles at most, emitters included (budget {:.0f}, from {:.3g} particle-substeps/s "
+                     "per solver thread{})",
                      spec.pbf_iterations, std::max(spec.pbf_iterations, spec.pbf_max_iterations),
-                     spec.spacing, fluid_particles, budget);
+                     spec.spacing, fluid_particles, budget, rate_per_thread,
+                     measured ? ", measured on this machine" : ", the reference machine's");
 }
 
 namespace {
@@ -55,7 +91,7 @@ double particles(const SimSpec& s) {
 
 }  // namespace
 
-RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads) {
+RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, double rate_per_thread) {
   RealtimeProfile r{scene};
   r.fluid_particles = particles(scene);
   if (!scene.viewer_realtime) return r;
@@ -68,7 +104,9 @@ RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads) {
   // with these; worst density error 14.0% → 17.7%, mean at the end 0.72% → 0.78%.
   r.spec.pbf_iterations = std::min(r.spec.pbf_iterations, kRealtimePbfIterations);
   r.spec.pbf_max_iterations = std::min(r.spec.pbf_max_iterations, kRealtimePbfMaxIterations);
-  r.budget = realtime_budget(r.spec, solver_threads);
+  r.measured = rate_per_thread > 0;
+  r.rate_per_thread = r.measured ? rate_per_thread : realtime_particle_substeps_per_thread(scene.dimension);
+  r.budget = realtime_budget(r.spec, solver_threads, r.rate_per_thread);
   // The count scales as spacing^-D; a few rounds absorb the lattice's rounding at block edges.
   double spacing = scene.spacing;
   for (int round = 0; round < 20 && r.fluid_particles > r.budget; ++round) {

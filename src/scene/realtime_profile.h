@@ -1,7 +1,8 @@
 #pragma once
 // The viewer's real-time profile (issue 9 §5): scenes with viewer.realtime set run with PBF, at
 // a spacing coarse enough that the viewer's solver threads keep up with real time. The budget
-// is measured, not derived: see docs/performance.md ("The viewer in real time").
+// is measured, not derived: on the reference machine (docs/performance.md, "The viewer in real
+// time"), and by the viewer on the machine it runs on (measure_particle_substeps_per_thread).
 #include <string>
 
 #include "solvers/spec.h"
@@ -14,7 +15,24 @@ double realtime_particle_substeps_per_thread(int dimension);
 /// The fluid particles (emitters' caps included) `solver_threads` keep in real time for this
 /// PBF set-up: the rate above over its substeps per second (solver.pbf.substeps over
 /// solver.pbf.time_step), so a scene with twice the substeps gets half the particles.
-double realtime_budget(const SimSpec& pbf_spec, int solver_threads);
+/// rate_per_thread: fluid particle-substeps per second and thread (0: the reference machine's,
+/// realtime_particle_substeps_per_thread).
+double realtime_budget(const SimSpec& pbf_spec, int solver_threads, double rate_per_thread = 0);
+
+/// This machine's rate, measured: steps `profile_spec` (a profile's spec, on the CPU) from rest
+/// with `threads` threads for about wall_s of wall time (at least a few substeps) and returns the
+/// fluid particle-substeps per second and thread of its median substep.
+double measure_particle_substeps_per_thread(const SimSpec& profile_spec, int threads, double wall_s);
+/// The rate to budget with, given a measured one: the share of a calm substep's speed that held
+/// real time in the viewer (the violent substeps cost more, and the drawing shares the cores),
+/// bounded to [1/16, 2] times the reference machine's, so that one noisy measurement cannot make
+/// a scene empty or huge.
+double calibrated_rate(double measured_per_thread, int dimension);
+/// The share above, measured in the viewer (docs/performance.md, "The viewer's budget, measured
+/// on the machine"): 3D 0.74 and 0.78 on the two machines it was measured on. 2D is lower: its
+/// 2 m column flows fast enough that the CFL bound splits the violent substeps, which a
+/// measurement from rest does not see.
+double realtime_calm_share(int dimension);
 
 /// PBF's Jacobi iterations per substep in the profile: at least, and at most (realtime_profile).
 inline constexpr int kRealtimePbfIterations = 3, kRealtimePbfMaxIterations = 4;
@@ -23,6 +41,8 @@ struct RealtimeProfile {
   SimSpec spec;             // what the viewer runs
   bool applied = false;     // false: the scene is not marked viewer.realtime; spec as given
   double fluid_particles = 0, budget = 0;  // at the start plus what emitters may add
+  double rate_per_thread = 0;  // fluid particle-substeps/s per thread the budget assumed
+  bool measured = false;       // the rate was this machine's (calibrated_rate), not the reference's
   std::string describe() const;  // one line for the terminal and the panel
 };
 
@@ -31,6 +51,7 @@ struct RealtimeProfile {
 /// starting fluid plus the most its emitters may add fits the budget. Emitter caps scale with
 /// the particle volume, so the scene keeps its amount of water. The result is validated like
 /// any scene.
-RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads);
+/// rate_per_thread as for realtime_budget (0: the reference machine's).
+RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, double rate_per_thread = 0);
 
 }  // namespace rtsph

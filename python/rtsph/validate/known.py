@@ -51,7 +51,6 @@ KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
     ("dam_break_2d", "wcsph"): Known(0.1203, _DAM),
     ("dam_break_2d", "pbf"): Known(0.2169, _DAM),
     ("dam_break_2d", "dfsph"): Known(0.1320, _DAM),
-    ("taylor_green_2d", "dfsph"): Known(0.07561, "DFSPH loses 7% of the amplitude while the lattice first rearranges (t ≈ 0.1-0.2 s); 0.6% at 160²"),
     ("still_water_3d", "wcsph"): Known(1.201, _STILL),
     ("still_water_3d", "pbf"): Known(1.742, _STILL),
     ("still_water_3d", "dfsph"): Known(2.436, _STILL + "; DFSPH jitters against the floor"),

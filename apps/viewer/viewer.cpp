@@ -99,9 +99,13 @@ SimSpec Viewer::for_viewer(const SimSpec& scene, const std::vector<std::string>&
   // The budget is this machine's: a fixed one (the reference machine's) ran a slower machine's
   // dam break at half its real speed.
   double rate = opt_.realtime_rate;
-  if (rate <= 0 && scene_spec_.viewer_realtime && scene_spec_.backend != "gpu" && opt_.backend != "gpu")
+  const char* source = "--realtime-rate";
+  if (rate <= 0 && scene_spec_.viewer_realtime && scene_spec_.backend != "gpu" && opt_.backend != "gpu") {
     rate = machine_rate(scene_spec_.dimension);
-  const RealtimeProfile p = realtime_profile(scene_spec_, threads_, rate);
+    source = "measured on this machine";
+  }
+  RealtimeProfile p = realtime_profile(scene_spec_, threads_, rate);
+  if (rate > 0) p.rate_source = source;
   profile_text_ = p.describe();
   SimSpec out = p.spec;
   // The user's own overrides win over the profile's choices; the line says so, as a --set

@@ -64,10 +64,9 @@ std::string RealtimeProfile::describe() const {
   if (!applied) return "as written";
   return fmt::format("real-time profile: pbf ({}-{} iterations), fluid.spacing {:.4g} m, {:.0f} fluid "
                      "particles at most, emitters included (budget {:.0f}, from {:.3g} particle-substeps/s "
-                     "per solver thread{})",
+                     "per solver thread, {})",
                      spec.pbf_iterations, std::max(spec.pbf_iterations, spec.pbf_max_iterations),
-                     spec.spacing, fluid_particles, budget, rate_per_thread,
-                     measured ? ", measured on this machine" : ", the reference machine's");
+                     spec.spacing, fluid_particles, budget, rate_per_thread, rate_source);
 }
 
 namespace {
@@ -104,8 +103,8 @@ RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, doubl
   // with these; worst density error 14.0% → 17.7%, mean at the end 0.72% → 0.78%.
   r.spec.pbf_iterations = std::min(r.spec.pbf_iterations, kRealtimePbfIterations);
   r.spec.pbf_max_iterations = std::min(r.spec.pbf_max_iterations, kRealtimePbfMaxIterations);
-  r.measured = rate_per_thread > 0;
-  r.rate_per_thread = r.measured ? rate_per_thread : realtime_particle_substeps_per_thread(scene.dimension);
+  if (rate_per_thread > 0) r.rate_source = "given";
+  r.rate_per_thread = rate_per_thread > 0 ? rate_per_thread : realtime_particle_substeps_per_thread(scene.dimension);
   r.budget = realtime_budget(r.spec, solver_threads, r.rate_per_thread);
   // The count scales as spacing^-D; a few rounds absorb the lattice's rounding at block edges.
   double spacing = scene.spacing;

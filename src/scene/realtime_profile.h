@@ -42,7 +42,9 @@ struct RealtimeProfile {
   bool applied = false;     // false: the scene is not marked viewer.realtime; spec as given
   double fluid_particles = 0, budget = 0;  // at the start plus what emitters may add
   double rate_per_thread = 0;  // fluid particle-substeps/s per thread the budget assumed
-  bool measured = false;       // the rate was this machine's (calibrated_rate), not the reference's
+  // Where that rate came from, for describe(): the reference machine's unless a caller gave one
+  // (the viewer: "measured on this machine", "--realtime-rate").
+  std::string rate_source = "the reference machine's";
   std::string describe() const;  // one line for the terminal and the panel
 };
 

@@ -160,6 +160,18 @@ else
   ls "$work"/rtsph_nozzle_obstacle_2d_*_frames/frame_000000.png >/dev/null 2>&1 || { echo "FAIL: no PNG recording"; fail=1; }
 fi
 
+# The real-time profile's budget: measured on this machine by default (a line says so), or
+# given with --realtime-rate (no measurement; the reference machine's rate gives its 10,350
+# particles for the 3D dam break on one solver thread).
+out=$(timeout 120 bash -c "$(declare -f run_x); run_x \"$bin\" view --threads 1 --frames 2" 2>&1)
+echo "$out" | grep -q "this machine steps .* fluid particle-substeps/s per solver thread" ||
+  { echo "FAIL: no measurement line"; echo "$out"; fail=1; }
+echo "$out" | grep -q "measured on this machine)" || { echo "FAIL: profile does not name the measured rate"; fail=1; }
+out=$(timeout 120 bash -c "$(declare -f run_x); run_x \"$bin\" view --threads 1 --realtime-rate 1.26e6 --frames 2" 2>&1)
+echo "$out" | grep -q "this machine steps" && { echo "FAIL: measured despite --realtime-rate"; fail=1; }
+echo "$out" | grep -q "10350 fluid particles at most.*--realtime-rate)" ||
+  { echo "FAIL: --realtime-rate 1.26e6 not the reference budget:"; echo "$out"; fail=1; }
+
 # No OpenGL 4.3 (Mesa told to offer 3.3): one line on stderr, non-zero exit.
 out=$(MESA_GL_VERSION_OVERRIDE=3.3 timeout 120 bash -c "$(declare -f run_x); run_x \"$bin\" view dam_break_2d --frames 3" 2>&1)
 rc=$?

@@ -100,7 +100,8 @@ SimSpec Viewer::for_viewer(const SimSpec& scene, const std::vector<std::string>&
   // dam break at half its real speed.
   double rate = opt_.realtime_rate;
   const char* source = "--realtime-rate";
-  if (rate <= 0 && scene_spec_.viewer_realtime && scene_spec_.backend != "gpu" && opt_.backend != "gpu") {
+  // A solver asked to run on the GPU (--backend, else the scene) gets nothing from the CPU's rate.
+  if (rate <= 0 && scene_spec_.viewer_realtime && choose_backend(opt_.backend, scene_spec_, "auto") != "gpu") {
     rate = machine_rate(scene_spec_.dimension);
     source = "measured on this machine";
   }

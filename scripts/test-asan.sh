@@ -10,7 +10,8 @@
 # - RTSPH_SANITIZER=1 is exported; tests may shorten long runs with it (same checks, fewer
 #   steps; tests/run_checkpoint_test.cpp does). The physics validations run in full: about
 #   50 s (hydrostatic) and 25 s (dam break) under ASan on 2 cores; the whole suite about 6 min
-#   (cli_render_smoke alone 200 s: llvmpipe under ASan) after a first build of ~25 min.
+#   after a first build of ~25 min (cli_render_smoke took 200-360 s of it while plain `rtsph`'s
+#   headless video ran WCSPH; it runs PBF since 2026-11-27).
 # - RTSPH_ASAN_EXCLUDE: a ctest regex of tests to skip (default: none).
 # Extra arguments go to ctest.
 # Usage: scripts/test-asan.sh [ctest args...]

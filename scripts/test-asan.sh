@@ -11,7 +11,7 @@
 #   steps; tests/run_checkpoint_test.cpp does). The physics validations run in full: about
 #   50 s (hydrostatic) and 25 s (dam break) under ASan on 2 cores; the whole suite about 6 min
 #   after a first build of ~25 min (cli_render_smoke took 200-360 s of it while plain `rtsph`'s
-#   headless video ran WCSPH; it runs PBF since 2026-11-27).
+#   headless video ran WCSPH; it runs PBF since 2026-11-26, session 17).
 # - RTSPH_ASAN_EXCLUDE: a ctest regex of tests to skip (default: none).
 # Extra arguments go to ctest.
 # Usage: scripts/test-asan.sh [ctest args...]

@@ -45,9 +45,6 @@ _OSC = "the drop locks into an ellipse (Akinci's cohesion at h = spacing): no li
 _SPH = "0.04 m (quick) is too coarse for 3 cm at every probe; 0.02 m (full) passes"
 
 KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
-    ("hydrostatic_3d", "pbf"): Known(0.0762, "ten layers at the quick level, and the top ones read low (PBF's clamped λ at the "
-                                            "surface); 3.0% at the full level (9.5% and 4.5% before s_corr's share was in "
-                                            "PBF's pressure, 2026-11-26)"),
     ("dam_break_2d", "wcsph"): Known(0.1203, _DAM),
     ("dam_break_2d", "pbf"): Known(0.2169, _DAM),
     ("dam_break_2d", "dfsph"): Known(0.1320, _DAM),

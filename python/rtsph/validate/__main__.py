@@ -4,11 +4,13 @@ per case, and the report. Exit code 0 when every applicable case passes, 1 when 
 from __future__ import annotations
 
 import argparse
+import os
 import sys
 import time
 
 from . import CASES, METHODS, run_case
 from .known import judge
+from .parallel import run_parallel
 from .report import write_report
 
 
@@ -22,7 +24,11 @@ def main(argv=None) -> int:
     lvl.add_argument("--quick", action="store_const", const="quick", dest="level", help="coarse sizes (CI; default)")
     lvl.add_argument("--full", action="store_const", const="full", dest="level", help="report resolution and convergence")
     ap.add_argument("--out", default="validation", help="output directory (default: ./validation)")
-    ap.add_argument("--threads", type=int, default=0, help="solver threads (0 = all cores)")
+    ap.add_argument("--threads", type=int, default=0,
+                    help="solver threads per case (0 = all cores, or all cores over --jobs)")
+    ap.add_argument("--jobs", type=int, default=1,
+                    help="cases run at once, each in its own process (default 1); the figures are the "
+                         "same bits whatever --jobs and --threads")
     ap.add_argument("--known-failures", action="store_true",
                     help="exit 0 when what fails is the quick level's known failures (rtsph/validate/known.py), "
                          "none worse than recorded, and none of them passes (the test command's run; quick, cpu)")
@@ -45,25 +51,43 @@ def main(argv=None) -> int:
     if args.threads < 0:
         print("rtsph validate: --threads must be 0 (all cores) or more", file=sys.stderr)
         return 2
+    if args.jobs < 1:
+        print(f"rtsph validate: --jobs {args.jobs}: must be 1 or more", file=sys.stderr)
+        return 2
     if args.known_failures and (level != "quick" or args.backend != "cpu"):
         print("rtsph validate: --known-failures records the quick level on the cpu backend only", file=sys.stderr)
         return 2
-    results = []
+    where = "" if args.backend == "cpu" else f", {args.backend}"
+
+    def line(r, wall_s: float) -> str:
+        status = "n/a" if not r.applicable else ("pass" if r.passed else "FAIL")
+        err = "" if not r.applicable else f" {r.error:.4g} (tolerance {r.tolerance:.4g})"
+        if r.metric == "(did not finish)":  # the engine's diagnostic, not a figure
+            err = f": did not finish: {r.notes}"
+        return f" {status}{err}, {r.particles} particles, {wall_s:.1f} s"
+
+    cases = args.cases or list(CASES)
+    threads = args.threads
+    if args.jobs > 1 and threads == 0:
+        threads = max(1, (os.cpu_count() or 1) // args.jobs)
     t0 = time.perf_counter()
-    for case in args.cases or list(CASES):
-        for m in methods:
-            t = time.perf_counter()
-            where = "" if args.backend == "cpu" else f", {args.backend}"
-            print(f"rtsph validate: {case} ({m}{where}, {level}) ...", end="", file=sys.stderr, flush=True)
-            r = run_case(case, m, level, args.threads, args.backend)
-            results.append(r)
-            status = "n/a" if not r.applicable else ("pass" if r.passed else "FAIL")
-            err = "" if not r.applicable else f" {r.error:.4g} (tolerance {r.tolerance:.4g})"
-            if r.metric == "(did not finish)":  # the engine's diagnostic, not a figure
-                err = f": did not finish: {r.notes}"
-            print(f" {status}{err}, {r.particles} particles, {time.perf_counter() - t:.1f} s", file=sys.stderr)
+    if args.jobs > 1:
+        print(f"rtsph validate: {args.jobs} jobs of {threads} solver thread(s); a line as each case ends",
+              file=sys.stderr)
+        results = run_parallel(cases, methods, level, threads, args.backend, args.jobs,
+                               lambda r, w: print(f"rtsph validate: {r.case} ({r.method}{where}, {level})"
+                                                  f"{line(r, w)}", file=sys.stderr))
+    else:
+        results = []
+        for case in cases:
+            for m in methods:
+                t = time.perf_counter()
+                print(f"rtsph validate: {case} ({m}{where}, {level}) ...", end="", file=sys.stderr, flush=True)
+                r = run_case(case, m, level, threads, args.backend)
+                results.append(r)
+                print(line(r, time.perf_counter() - t), file=sys.stderr)
     wall = time.perf_counter() - t0
-    write_report(args.out, results, level, args.threads, wall, args.backend)
+    write_report(args.out, results, level, threads, wall, args.backend, args.jobs)
     failed = [r for r in results if r.applicable and not r.passed]
     print(f"rtsph validate: {len(results) - len(failed)}/{len(results)} passed or n/a in {wall:.0f} s; "
           f"report: {args.out}/report.html", file=sys.stderr)

@@ -57,7 +57,7 @@ def _fmt(x: float) -> str:
 
 
 def write_report(out: str, results: List[Result], level: str, threads: int, wall_s: float,
-                 backend: str = "cpu") -> None:
+                 backend: str = "cpu", jobs: int = 1) -> None:
     os.makedirs(out, exist_ok=True)
 
     def known(r: Result) -> str:
@@ -76,7 +76,7 @@ def write_report(out: str, results: List[Result], level: str, threads: int, wall
                 for row in zip(*(r.series[c] for c in cols)):
                     w.writerow([repr(float(v)) for v in row])
     meta = {"date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
-            "level": level, "backend": backend, "threads": threads, "wall_s": wall_s,
+            "level": level, "backend": backend, "threads": threads, "jobs": jobs, "wall_s": wall_s,
             "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),
             "cpus": os.cpu_count(), "python": platform.python_version()}
     summary = {"meta": meta, "passed": all(r.passed or not r.applicable for r in results), "cases": [
@@ -130,7 +130,7 @@ body{{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}} table
 td,th{{border:1px solid #ccc;padding:3px 8px;font-size:90%}} .pass{{background:#dfd}} .fail{{background:#fdd}}
 .na{{color:#888}} img{{max-width:100%}}</style></head><body>
 <h1>rtsph validation ({level}, {backend} backend)</h1>
-<p>{html.escape(meta['date'])}, {meta['cpus']} CPUs, {threads or 'all'} solver threads, {wall_s:.0f} s in all.
+<p>{html.escape(meta['date'])}, {meta['cpus']} CPUs, {threads or 'all'} solver threads{f" in each of {jobs} jobs" if jobs > 1 else ""}, {wall_s:.0f} s in all.
 Every case: <code>rtsph validate --{level} --backend {backend}</code>; the narrative is docs/validation.md.</p>
 <table><tr><th>case</th>{''.join(f'<th>{m}</th>' for m in methods)}</tr>{''.join(rows)}</table>
 {''.join(sections)}</body></html>"""

@@ -1,0 +1,113 @@
+"""`rtsph validate --jobs N`: the cases in N worker processes.
+
+Every method gives the same bits for any thread count (docs/architecture.md), so a case run in
+a worker with one solver thread measures exactly what a serial run with two measures; only the
+wall times differ. Most quick cases are too small to keep two solver threads busy (a pair loop
+wakes a thread only for 512 pairs of work), so two one-thread workers finish the quick suite
+sooner than one two-thread run.
+
+A Result's plot is a closure of its case, which pickle cannot carry back from a worker. The
+worker draws it on a recording axes instead (_Recorder), and the parent replays the calls on the
+report's real axes (_Replay): the same figure, from the same matplotlib calls.
+"""
+from __future__ import annotations
+
+import multiprocessing
+import sys
+from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+from typing import Callable, Dict, List, Sequence, Tuple
+
+from .cases import Result, run_case
+
+# Cases that reuse another's work in the same process (drops.calibrate_sigma caches σ(γ) per
+# method): they run in one task, after it.
+_AFTER = {"oscillating_droplet_2d": "static_droplet_2d"}
+# Tasks start longest first, so that the last one to finish is a short one (quick level, two
+# cores, 2026-11-26: SPHERIC Test 2's WCSPH run alone is 40% of the suite).
+_LONG_FIRST = ("spheric_test2_3d", "static_droplet_3d", "taylor_green_2d")
+
+
+class _ColorOf:
+    """Stands for the colour of the line a recorded call returned (dam_breaks' plots reuse it)."""
+    def __init__(self, call: int):
+        self.call = call
+
+
+class _LineRef:
+    def __init__(self, call: int):
+        self.call = call
+
+    def get_color(self):
+        return _ColorOf(self.call)
+
+
+class _Recorder:
+    """Axes that record each call (name, args, kwargs). Calls that draw lines return one line
+    reference, so `line, = ax.plot(...)` and `line.get_color()` work."""
+    def __init__(self):
+        self.calls: List[Tuple[str, tuple, dict]] = []
+
+    def __getattr__(self, name: str):
+        def call(*args, **kwargs):
+            self.calls.append((name, args, kwargs))
+            return [_LineRef(len(self.calls) - 1)]
+        return call
+
+
+class _Replay:
+    """A picklable plot(ax, result) that replays recorded calls on real axes."""
+    def __init__(self, calls):
+        self.calls = calls
+
+    def __call__(self, ax, _result=None):
+        returned = {}
+
+        def real(v):
+            return returned[v.call][0].get_color() if isinstance(v, _ColorOf) else v
+        for i, (name, args, kwargs) in enumerate(self.calls):
+            returned[i] = getattr(ax, name)(*[real(a) for a in args], **{k: real(v) for k, v in kwargs.items()})
+
+
+def _run_task(task: Sequence[Tuple[str, str]], level: str, threads: int, backend: str) -> List[Result]:
+    out = []
+    for case, method in task:
+        r = run_case(case, method, level, threads, backend)
+        if r.plot is not None:
+            rec = _Recorder()
+            r.plot(rec, r)
+            r.plot = _Replay(rec.calls)
+        out.append(r)
+    return out
+
+
+def tasks_for(cases: Sequence[str], methods: Sequence[str]) -> List[List[Tuple[str, str]]]:
+    """The (case, method) runs grouped into tasks, longest first."""
+    tasks: Dict[Tuple[str, str], List[Tuple[str, str]]] = {}
+    for case in cases:
+        for m in methods:
+            key = (_AFTER.get(case, case), m)
+            if key[0] not in cases:
+                key = (case, m)
+            tasks.setdefault(key, []).append((case, m))
+    rank = {c: i for i, c in enumerate(_LONG_FIRST)}
+    return [tasks[k] for k in sorted(tasks, key=lambda k: rank.get(k[0], len(rank)))]
+
+
+def run_parallel(cases: Sequence[str], methods: Sequence[str], level: str, threads: int, backend: str,
+                 jobs: int, report: Callable[[Result, float], None]) -> List[Result]:
+    """Runs every (case, method) in `jobs` processes and returns the results in the serial order;
+    report(result, wall_s) is called as each finishes."""
+    results: Dict[Tuple[str, str], Result] = {}
+    # spawn, not fork: the parent may hold OpenMP or GL state that a forked child must not inherit.
+    ctx = multiprocessing.get_context("spawn")
+    with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
+        pending = {pool.submit(_run_task, t, level, threads, backend) for t in tasks_for(cases, methods)}
+        while pending:
+            done, _ = wait(pending, return_when=FIRST_COMPLETED)
+            for f in done:
+                pending.remove(f)
+                for r in f.result():
+                    results[(r.case, r.method)] = r
+                    report(r, r.wall_s)
+                sys.stderr.flush()
+    return [results[(c, m)] for c in cases for m in methods]

@@ -39,7 +39,8 @@ class Known:
 
 
 _DAM = "the residual column height drains more slowly than Martin & Moyce's Table 6 after τ ≈ 2 (the front passes)"
-_STILL = "particles near the walls keep moving: more than a spacing of drift after settling"
+_STILL = ("the lattice's rearrangement is still running down after the settling time, all through the water "
+          "(WCSPH: rms speed falls as exp(-t/1.6 s)): more than a spacing of drift after settling")
 _ST3 = "the 3D calibration drop is 5 spacings in radius at the quick level; the prediction at 2·R is off"
 _OSC = "the drop locks into an ellipse (Akinci's cohesion at h = spacing): no liquid oscillation to time"
 _SPH = "0.04 m (quick) is too coarse for 3 cm at every probe; 0.02 m (full) passes"

@@ -16,6 +16,7 @@
 #include "io/fnv.h"
 #include "scene/scene.h"
 #include "solvers/health.h"
+#include "sanitizer_scale.h"
 #include "state_compare.h"
 
 namespace rtsph {
@@ -23,10 +24,7 @@ namespace {
 
 constexpr double kPi = std::numbers::pi;
 
-double scale() {  // shorter runs under a sanitizer (RTSPH_SANITIZER=1)
-  const char* s = std::getenv("RTSPH_SANITIZER");
-  return s && *s && std::string(s) != "0" ? 0.25 : 1.0;
-}
+using test::sanitizer_scale;
 
 void run_until(Simulation& sim, double t) {
   while (sim.time() < t) sim.step();
@@ -234,7 +232,7 @@ TEST(Gas, PolytropeRelaxesToLaneEmden) {
   // direct summation (the scene's choice; RTSPH_GAS_SOLVER=direct) it is 0.82% of ρc at t = 6.
   const char* env = std::getenv("RTSPH_GAS_SOLVER");
   s.gravity_solver = env && std::string(env) == "direct" ? GravitySolver::Direct : GravitySolver::Tree;
-  s.end_time = 6.0 * scale();  // the damped relaxation has settled to ~1% by then (see below)
+  s.end_time = 6.0 * sanitizer_scale();  // the damped relaxation has settled to ~1% by then (see below)
   auto sim = make_simulation(s, 2);
   const double M = s.rest_density * std::pow(s.spacing, 3) * double(sim->fluid().count);
   const Polytrope star(s, M);
@@ -249,7 +247,7 @@ TEST(Gas, PolytropeRelaxesToLaneEmden) {
                 "E = %.5f (%llu steps)\n", sim->time(), 100 * err, st.kinetic_energy_j,
                 st.kinetic_energy_j + st.potential_energy_j, (unsigned long long)st.steps);
     if (std::abs(t - s.end_time) < 1e-9) {
-      if (scale() == 1.0) {  // under a sanitizer the run is too short to have relaxed
+      if (sanitizer_scale() == 1.0) {  // under a sanitizer the run is too short to have relaxed
         EXPECT_LT(err, 0.05);
       }
       write_profile_csv(*sim, "polytrope_star_3d");
@@ -310,7 +308,7 @@ Conservation conservation(GravitySolver solver) {
   const double E0 = energy();
   const Moments m0 = moments();
   Conservation worst{0, 0, 0};
-  const double T = 10.0 * scale();
+  const double T = 10.0 * sanitizer_scale();
   double next_print = 0;
   while (sim->time() < T) {
     sim->step();
@@ -393,7 +391,7 @@ TEST(Gas, OpenSpaceGridFollowsAMovingStar) {
   moving.fluid_blocks[0].velocity = {{u, 0, 0}};
   auto rest = make_simulation(s, 2), away = make_simulation(moving, 2);
   const std::size_t bytes0 = away->stats().bytes;
-  const double T = 5.0 * scale();
+  const double T = 5.0 * sanitizer_scale();
   run_until(*rest, T);
   run_until(*away, T);
   auto rms_radius = [](const Simulation& sim) {

@@ -16,6 +16,7 @@
 #include "io/fnv.h"
 #include "scene/scene.h"
 #include "solvers/health.h"
+#include "sanitizer_scale.h"
 #include "state_compare.h"
 #include "test_scenes.h"
 
@@ -24,12 +25,7 @@ namespace fs = std::filesystem;
 namespace rtsph {
 namespace {
 
-/// Under a sanitizer the runs are shortened (RTSPH_SANITIZER=1): the comparison is just as
-/// strict, only over fewer steps.
-double scale() {
-  const char* s = std::getenv("RTSPH_SANITIZER");
-  return s && *s && std::string(s) != "0" ? 0.25 : 1.0;
-}
+using test::sanitizer_scale;
 
 std::uint64_t hash_of(const SimSpec& s) { return io::hash_bytes(scene_to_json(s)); }
 
@@ -77,14 +73,14 @@ std::uint64_t check_resume_is_exact(const SimSpec& spec, double T, int threads =
 }
 
 TEST(RunCheckpoint, ResumeIsBitwiseExactDamBreak2D) {
-  const auto steps = check_resume_is_exact(test::dam_break_2d(0.5, 0.02), 0.1 * scale());
+  const auto steps = check_resume_is_exact(test::dam_break_2d(0.5, 0.02), 0.1 * sanitizer_scale());
   EXPECT_GT(steps, 50u);
 }
 
 TEST(RunCheckpoint, ResumeIsBitwiseExactDamBreak3D) {
   SimSpec s = load_scene("dam_break_3d");
   s.spacing = 0.04;  // ~3,000 particles
-  check_resume_is_exact(s, 0.05 * scale());
+  check_resume_is_exact(s, 0.05 * sanitizer_scale());
 }
 
 TEST(RunCheckpoint, ResumeIsBitwiseExactWithEmittersAndMovingObstacle) {
@@ -95,16 +91,16 @@ TEST(RunCheckpoint, ResumeIsBitwiseExactWithEmittersAndMovingObstacle) {
   ASSERT_FALSE(s.obstacles.empty());
   auto probe = make_simulation(s, 1);
   const std::size_t n0 = probe->fluid().count;
-  run_until(*probe, 0.3 * scale());
+  run_until(*probe, 0.3 * sanitizer_scale());
   EXPECT_GT(probe->fluid().count, n0) << "the emitter should have added particles by T";
-  check_resume_is_exact(s, 0.3 * scale());
+  check_resume_is_exact(s, 0.3 * sanitizer_scale());
 }
 
 TEST(RunCheckpoint, ResumeIsBitwiseExactFixedDtTwoThreads) {
   SimSpec s = test::tank(2, 0.5, 0.3, 0.02);
   s.time_step_mode = TimeStepMode::Fixed;
   s.dt = 2e-4;
-  check_resume_is_exact(s, 0.02 * scale(), 2);
+  check_resume_is_exact(s, 0.02 * sanitizer_scale(), 2);
 }
 
 TEST(RunCheckpoint, CheckpointOfAnotherSceneIsRefused) {
@@ -135,22 +131,22 @@ TEST(RunCheckpoint, SceneJsonRoundTripKeepsTheHash) {
 TEST(RunCheckpoint, SnapshotRestoreIsBitwiseExact) {
   const SimSpec spec = test::dam_break_2d(0.5, 0.02);
   auto a = make_simulation(spec, 1);
-  run_until(*a, 0.03 * scale());
+  run_until(*a, 0.03 * sanitizer_scale());
   StateSnapshot snap;
   snap.capture(*a);
   EXPECT_EQ(snap.step(), a->step_count());
   EXPECT_GT(snap.bytes(), a->fluid().count * 4);
-  run_until(*a, 0.06 * scale());  // a runs on from the snapshot
+  run_until(*a, 0.06 * sanitizer_scale());  // a runs on from the snapshot
 
   // b: a fresh simulation restored from a's snapshot, and a itself rewound to it.
   auto b = make_simulation(spec, 1);
   snap.restore(*b);
-  run_until(*b, 0.06 * scale());
+  run_until(*b, 0.06 * sanitizer_scale());
   expect_same_state(*a, *b);
 
   snap.restore(*a);
   EXPECT_EQ(a->time(), snap.time());
-  run_until(*a, 0.06 * scale());
+  run_until(*a, 0.06 * sanitizer_scale());
   expect_same_state(*a, *b);
 }
 

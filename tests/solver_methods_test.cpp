@@ -19,6 +19,7 @@
 #include "io/fnv.h"
 #include "scene/scene.h"
 #include "solvers/health.h"
+#include "sanitizer_scale.h"
 #include "state_compare.h"
 #include "test_scenes.h"
 
@@ -27,10 +28,7 @@ namespace fs = std::filesystem;
 namespace rtsph {
 namespace {
 
-double scale() {  // shorter runs under a sanitizer (RTSPH_SANITIZER=1), same checks
-  const char* s = std::getenv("RTSPH_SANITIZER");
-  return s && *s && std::string(s) != "0" ? 0.25 : 1.0;
-}
+using test::sanitizer_scale;
 
 void run_until(Simulation& sim, double t) {
   while (sim.time() < t) sim.step();
@@ -58,8 +56,8 @@ TEST_P(Methods, OneAndTwoThreadsAreBitwiseIdentical) {
     if (dim == 3) s.fluid_blocks[0].max = {{0.08, 0.15, 0.2}};  // a column that collapses
     s = with_method(s, GetParam());
     auto one = make_simulation(s, 1), two = make_simulation(s, 2);
-    run_until(*one, 0.1 * scale());
-    run_until(*two, 0.1 * scale());
+    run_until(*one, 0.1 * sanitizer_scale());
+    run_until(*two, 0.1 * sanitizer_scale());
     SCOPED_TRACE(std::to_string(dim) + "D");
     EXPECT_GT(one->step_count(), 3u);
     expect_same_state(*one, *two);
@@ -68,7 +66,7 @@ TEST_P(Methods, OneAndTwoThreadsAreBitwiseIdentical) {
 
 TEST_P(Methods, ResumeIsBitwiseExactWithEmittersAndMovingObstacle) {
   SimSpec s = with_method(load_scene("nozzle_moving_obstacle_2d"), GetParam());
-  const double T = 0.15 * scale();
+  const double T = 0.15 * sanitizer_scale();
   const fs::path file = fs::temp_directory_path() /
                         ("rtsph_methods_" + GetParam() + std::to_string(::getpid()) + ".ckpt");
   const std::uint64_t hash = io::hash_bytes(scene_to_json(s));
@@ -92,7 +90,7 @@ TEST_P(Methods, ResumeIsBitwiseExactWithEmittersAndMovingObstacle) {
 TEST_P(Methods, SnapshotRestoreIsBitwiseExact) {
   SimSpec s = with_method(test::dam_break_2d(0.2, 0.01), GetParam());
   auto sim = make_simulation(s, 2);
-  run_until(*sim, 0.05 * scale());
+  run_until(*sim, 0.05 * sanitizer_scale());
   StateSnapshot snap;
   snap.capture(*sim);
   auto other = make_simulation(s, 2);
@@ -108,8 +106,8 @@ TEST_P(Methods, SnapshotRestoreIsBitwiseExact) {
 TEST_P(Methods, OverwritingTheFluidWithItsOwnStateChangesNothing) {
   SimSpec s = with_method(test::dam_break_2d(0.2, 0.01), GetParam());
   auto sim = make_simulation(s, 2), other = make_simulation(s, 2);
-  run_until(*sim, 0.05 * scale());
-  run_until(*other, 0.05 * scale());
+  run_until(*sim, 0.05 * sanitizer_scale());
+  run_until(*other, 0.05 * sanitizer_scale());
   const ParticleView v = other->fluid();
   std::vector<float> x[2], vel[2];
   const float* xs[2];
@@ -214,7 +212,7 @@ TEST_P(Methods, RunEveryBuiltIn2DSceneAtItsResolution) {
     s.method = GetParam();
     auto sim = make_simulation(s, 2);
     SCOPED_TRACE(name);
-    while (sim->time() < 0.1 * scale()) {
+    while (sim->time() < 0.1 * sanitizer_scale()) {
       sim->step();
       ASSERT_FALSE(check_health(*sim).has_value()) << check_health_message(*sim).value_or("");
     }
@@ -234,7 +232,7 @@ double dfsph_mean_error(double tolerance, double* worst, double* iterations) {
   double sum = 0;
   int n = 0;
   *worst = 0;
-  while (sim->time() < 0.3 * scale()) {
+  while (sim->time() < 0.3 * sanitizer_scale()) {
     sim->step();
     const auto st = sim->stats();
     sum += st.mean_density_error;
@@ -280,7 +278,7 @@ TEST(Dfsph, HoldsTheDefaultToleranceAtEveryStepIn3D) {
   auto sim = make_simulation(s, 2);
   double worst = 0, worst_t = 0;
   int max_it = 0;
-  while (sim->time() < 0.4 * scale()) {
+  while (sim->time() < 0.4 * sanitizer_scale()) {
     sim->step();
     const auto st = sim->stats();
     if (st.mean_density_error > worst) { worst = st.mean_density_error; worst_t = st.time_s; }
@@ -348,7 +346,7 @@ TEST(Dfsph, ChebyshevAccelerationNeedsFewerSweeps) {
     auto sim = make_simulation(s, 2);
     double worst = 0;
     *failed = 0;
-    while (sim->time() < 0.25 * scale()) {
+    while (sim->time() < 0.25 * sanitizer_scale()) {
       sim->step();
       *failed += !sim->solver_failure().empty();
       worst = std::max(worst, sim->stats().mean_density_error);
@@ -389,7 +387,7 @@ PbfRun pbf_column(int iterations, double tolerance) {
   s.pbf_max_density_error = tolerance;
   auto sim = make_simulation(s, 2);
   PbfRun r;
-  while (sim->time() < 0.3 * scale()) {
+  while (sim->time() < 0.3 * sanitizer_scale()) {
     sim->step();
     r.worst = std::max(r.worst, sim->stats().mean_density_error);
     r.most_iterations = std::max(r.most_iterations, sim->stats().pressure_iterations);

@@ -80,15 +80,19 @@ check test $? -eq 2
 check test "$(wc -l <"$work/err")" -eq 1
 
 # `rtsph` without arguments and without a display renders a short dam break and prints the path.
-out=$(cd "$work" && "$bin" 2>"$work/log")
-check test $? -eq 0
-if command -v ffmpeg >/dev/null; then
-  check test "$out" = "rtsph_dam_break_3d.mp4"
-  check test -s "$work/rtsph_dam_break_3d.mp4"
-else
-  check test -s "$work/rtsph_dam_break_3d_frames/frame_000000.png"
+# Not under a sanitizer (RTSPH_SANITIZER=1, scripts/test-asan.sh): it is 2 s of PBF at 24k
+# particles, 80-140 s there, and the 3D renders above run the same render and PBF code.
+if [ "${RTSPH_SANITIZER:-0}" = 0 ]; then
+  out=$(cd "$work" && "$bin" 2>"$work/log")
+  check test $? -eq 0
+  if command -v ffmpeg >/dev/null; then
+    check test "$out" = "rtsph_dam_break_3d.mp4"
+    check test -s "$work/rtsph_dam_break_3d.mp4"
+  else
+    check test -s "$work/rtsph_dam_break_3d_frames/frame_000000.png"
+  fi
+  check grep -q "no display" "$work/log"
 fi
-check grep -q "no display" "$work/log"
 
 # No OpenGL 4.3 context: one line, exit 1. Only Mesa's EGL is offered (a machine's other EGL
 # vendor, e.g. NVIDIA's, ignores the override and would give 4.6); the GL driver may add its own

@@ -153,5 +153,56 @@ TEST(RealtimeProfile, KeyReadsFromJsonAndSet) {
   EXPECT_TRUE(parse_scene(scene_to_json(s), "round trip").viewer_realtime);
 }
 
+// A GPU's budget may refine the scene (realtime_profile's `finer`): the smallest spacing whose
+// water fits, never below a quarter of the scene's; without `finer` the scene's spacing is the
+// finest (the CPU's budget).
+TEST(RealtimeProfile, FinerFillsALargerBudget) {
+  const SimSpec scene = load_scene("dam_break_3d");
+  const double written = count_particles(scene).fluid;
+  const double substeps_per_s = scene.pbf_substeps / scene.pbf_time_step;
+  for (double want : {2.0, 10.0}) {
+    const double rate = want * written * substeps_per_s;  // a budget of `want` times the scene
+    const RealtimeProfile p = realtime_profile(scene, 1, rate, /*finer=*/true);
+    EXPECT_NEAR(p.budget, want * written, 1e-6 * want * written);
+    EXPECT_LT(p.spec.spacing, scene.spacing);
+    EXPECT_LE(p.fluid_particles, p.budget);
+    // Within the lattice's rounding of the budget: a spacing 1% finer no longer fits.
+    SimSpec finer = p.spec;
+    apply_override(finer, "fluid.spacing=" + std::to_string(0.99 * p.spec.spacing));
+    EXPECT_GT(count_particles(finer).fluid, p.budget) << want;
+    EXPECT_GT(p.fluid_particles, 0.9 * p.budget) << want;
+    EXPECT_EQ(realtime_profile(scene, 1, rate).spec.spacing, scene.spacing);  // not without finer
+  }
+  // A budget beyond 4^3 times the scene stops at a quarter of its spacing.
+  const RealtimeProfile huge = realtime_profile(scene, 1, 1000 * written * substeps_per_s, true);
+  EXPECT_DOUBLE_EQ(huge.spec.spacing, kRealtimeFinest * scene.spacing);
+  // A smaller budget still coarsens, as without `finer`.
+  const double half = 0.5 * written * substeps_per_s;
+  EXPECT_EQ(realtime_profile(scene, 1, half, true).spec.spacing, realtime_profile(scene, 1, half).spec.spacing);
+}
+
+// particles_in_time: the size a device steps in a given time, from probes of its substep cost.
+TEST(RealtimeProfile, ParticlesInTimeFitsAFixedAndAPerParticleCost) {
+  // t = 1 ms + N / 1e8 s.
+  auto t = [](double n) { return 1e-3 + n / 1e8; };
+  EXPECT_NEAR(particles_in_time({{1e4, t(1e4)}, {8e4, t(8e4)}}, 1.5e-3), 5e4, 1e-6);
+  // In any order, and from the two probes nearest the time (a far one, here a slow outlier, is
+  // left out).
+  EXPECT_NEAR(particles_in_time({{8e4, t(8e4)}, {1e3, 5e-3}, {1e4, t(1e4)}}, 1.5e-3), 5e4, 1e-6);
+  // Probes far above the time do not hide a fixed part that is over it (llvmpipe: 10 ms a substep
+  // at any size, 6.25 ms allowed).
+  EXPECT_EQ(particles_in_time({{10350, 0.132}, {1320, 0.0202}, {192, 0.0109}}, 6.25e-3), 0);
+  // Never more than twice the largest size probed (4 ms would be 3e5 on the line).
+  EXPECT_DOUBLE_EQ(particles_in_time({{1e4, t(1e4)}, {8e4, t(8e4)}}, 4e-3), 1.6e5);
+  // One probe: t ∝ N.
+  EXPECT_NEAR(particles_in_time({{8e4, 1.8e-3}}, 0.9e-3), 4e4, 1e-6);
+  // The fixed part alone over the time: nothing fits. No usable probe: 0.
+  EXPECT_EQ(particles_in_time({{1e4, t(1e4)}, {8e4, t(8e4)}}, 0.5e-3), 0);
+  EXPECT_EQ(particles_in_time({}, 1e-3), 0);
+  EXPECT_EQ(particles_in_time({{1e4, 0}}, 1e-3), 0);
+  // A cost that does not rise with N (noise): t ∝ N through the nearest probe (the smaller, on a tie).
+  EXPECT_NEAR(particles_in_time({{2e4, 2e-3}, {1e4, 2e-3}}, 1e-3), 5e3, 1e-6);
+}
+
 }  // namespace
 }  // namespace rtsph

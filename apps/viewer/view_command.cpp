@@ -56,8 +56,9 @@ void add_view_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--report", o->report, "Print fps and simulation cost on exit");
   cmd->add_flag("--accurate", o->accurate, "Run the scene as written, not its real-time profile (scenes with viewer.realtime, e.g. the dam breaks, otherwise run PBF at a spacing this machine steps in real time)");
   cmd->add_option("--realtime-rate", o->realtime_rate,
-                  "Fluid particle-substeps per second per solver thread that the real-time profile budgets for "
-                  "(default: measured on this machine when the viewer starts, about half a second)")
+                  "Fluid particle-substeps per second per solver thread (on the GPU backend: of the GPU) that "
+                  "the real-time profile budgets for (default: measured on this machine, or on the GPU, when "
+                  "the viewer starts: about half a second on the CPU, a few probes on the GPU)")
       ->check(CLI::Range(1.0, 1e12));
   cmd->add_flag("--time-passes", o->time_passes, "With --report: print the CPU time of each stage of a frame and of each surface pass (glFinish between them; slows drawing a little)");
   cmd->add_option("--render-scale", o->render_scale, "Draw the scene at this fraction of the window resolution (default: adaptive, to keep >= 30 fps)")->check(CLI::Range(0.1, 1.0));

@@ -97,16 +97,20 @@ SimSpec Viewer::for_viewer(const SimSpec& scene, const std::vector<std::string>&
     return scene_spec_;
   }
   // The budget is this machine's: a fixed one (the reference machine's) ran a slower machine's
-  // dam break at half its real speed.
+  // dam break at half its real speed. It is measured on what steps the scene, the GPU or the CPU
+  // (before the backend is chosen, backend_.name is empty: the reference rate, provisionally).
+  const bool gpu = backend_.name == "gpu";
   double rate = opt_.realtime_rate;
   const char* source = "--realtime-rate";
-  // A solver asked to run on the GPU (--backend, else the scene) gets nothing from the CPU's rate.
-  if (rate <= 0 && scene_spec_.viewer_realtime && choose_backend(opt_.backend, scene_spec_, "auto") != "gpu") {
+  if (rate <= 0 && scene_spec_.viewer_realtime && !backend_.name.empty()) {
     rate = machine_rate(scene_spec_.dimension);
-    source = "measured on this machine";
+    source = gpu ? "measured on this GPU" : "measured on this machine";
   }
-  RealtimeProfile p = realtime_profile(scene_spec_, threads_, rate);
+  // The GPU steps as one device (threads = 1 in the budget), and its budget may refine the scene:
+  // it was measured at the sizes it gives (measure_gpu_budget).
+  RealtimeProfile p = realtime_profile(scene_spec_, gpu ? 1 : threads_, rate, gpu);
   if (rate > 0) p.rate_source = source;
+  if (gpu) p.rate_per = "on the GPU";
   profile_text_ = p.describe();
   SimSpec out = p.spec;
   // The user's own overrides win over the profile's choices; the line says so, as a --set
@@ -116,14 +120,32 @@ SimSpec Viewer::for_viewer(const SimSpec& scene, const std::vector<std::string>&
   return out;
 }
 
-// Measured once per dimension, on the built-in dam break's profile at the reference budget:
-// the workload the reference rate was measured on (a scene of its own may start empty).
+// Measured once per dimension, on the built-in dam break's profile: on the CPU at the reference
+// budget (the workload the reference rate was measured on; a scene of its own may start empty),
+// on the GPU from there up to the size it keeps up with (measure_gpu_budget).
 double Viewer::machine_rate(int dimension) {
   double& rate = machine_rate_[std::clamp(dimension, 0, 3)];
   if (rate > 0) return rate;
   const SimSpec dam = load_scene(dimension == 3 ? "dam_break_3d" : "dam_break_2d");
   const RealtimeProfile reference = realtime_profile(dam, threads_);
   const double t0 = now_s();
+  if (backend_.name == "gpu") {
+    const GpuBudget g = measure_gpu_budget(reference.spec, realtime_calm_share(dimension),
+                                           kRealtimeFinest * dam.spacing, 0.3);
+    // At least a 16th of the CPU reference's, as on the CPU: a software GL (asked for with
+    // --backend gpu) would otherwise make the scene a few hundred particles.
+    rate = std::max(g.rate, realtime_particle_substeps_per_thread(dimension) / 16);
+    std::string probes;
+    for (const StepProbe& p : g.probes)
+      probes += fmt::format("{}{:.0f} particles {:.2f} ms", probes.empty() ? "" : ", ", p.particles, 1e3 * p.seconds);
+    std::fprintf(stderr,
+                 "rtsph view: this GPU keeps %.0f fluid particles of %s in real time (PBF substeps of %s; "
+                 "%.0f%% of each substep's real time; %.1f s): %.3g particle-substeps/s; the real-time profile "
+                 "budgets %.3g (at least a 16th of the CPU reference machine's)\n",
+                 g.particles, dam.name.c_str(), probes.c_str(), 100 * realtime_calm_share(dimension), now_s() - t0,
+                 g.rate, rate);
+    return rate;
+  }
   const double measured = measure_particle_substeps_per_thread(reference.spec, threads_, 0.4);
   rate = calibrated_rate(measured, dimension);
   std::fprintf(stderr,
@@ -339,6 +361,8 @@ int Viewer::run() {
     std::fprintf(stderr, "rtsph view: no display (DISPLAY / WAYLAND_DISPLAY unset); use `rtsph render` for headless output\n");
     return 1;
   }
+  // Provisional (the reference budget): the profile's method decides whether the GPU can run it,
+  // and the budget is measured on the backend chosen, once the window's context exists.
   SimSpec spec = for_viewer(scene, opt_.sets);
   settings_ = parse_render_options(opt_.style, opt_.color, opt_.display, opt_.colormap);
   settings_.time_passes = opt_.time_passes;
@@ -347,7 +371,7 @@ int Viewer::run() {
   if (!parse_size(opt_.size, &w, &h))
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", opt_.size));
 
-  leave_llvmpipe_spare_cores(spec);
+  leave_llvmpipe_spare_cores(scene_spec_);
   switch (create_window()) {
     case WindowResult::Ok: break;
     case WindowResult::InitFailed: return kGlfwInitFailed;
@@ -384,6 +408,7 @@ int Viewer::run() {
     renderer_ = std::make_unique<render::Renderer>();
     builtins_ = builtin_scenes();
     backend_ = choose_viewer_backend(opt_.backend, spec);
+    spec = for_viewer(scene, opt_.sets);  // now with the budget of the backend that steps it
     gl_renderer_ = render::gl_description();
     runner_ = std::make_unique<SimRunner>(spec, opt_.threads >= 0 ? opt_.threads : threads_, opt_.paused,
                                           backend_.make, backend_.on_caller_thread);

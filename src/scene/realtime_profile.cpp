@@ -31,27 +31,56 @@ double realtime_budget(const SimSpec& pbf_spec, int solver_threads, double rate_
   return rate * std::max(1, solver_threads) / substeps_per_s;
 }
 
-double measure_particle_substeps_per_thread(const SimSpec& profile_spec, int threads, double wall_s) {
-  SimSpec spec = profile_spec;
-  spec.backend = "cpu";
-  const std::unique_ptr<Simulation> sim = make_simulation(spec, threads);
-  const double fluid = double(sim->stats().fluid_particles);
-  if (fluid <= 0) return 0;
+double median_substep_seconds(Simulation& sim, double wall_s, const std::function<void()>& sync) {
   using clock = std::chrono::steady_clock;
-  sim->step();  // the first substep sizes the scratch; not timed
+  sim.step();  // the first substep sizes the scratch; not timed
+  if (sync) sync();
   std::vector<double> times;
   const auto start = clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
   // At least five substeps, then on until wall_s (at most 200).
   while (times.size() < 5 || (times.size() < 200 && elapsed() < wall_s)) {
     const auto t0 = clock::now();
-    sim->step();
+    sim.step();
+    if (sync) sync();
     times.push_back(std::chrono::duration<double>(clock::now() - t0).count());
   }
   // The median: a shared machine's hiccup moves the mean of so few substeps.
   std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
-  const double t = std::max(times[times.size() / 2], 1e-9);
-  return fluid / t / std::max(1, threads);
+  return std::max(times[times.size() / 2], 1e-9);
+}
+
+double particles_in_time(std::vector<StepProbe> probes, double seconds_per_substep) {
+  std::erase_if(probes, [](const StepProbe& p) { return !(p.seconds > 0) || !(p.particles > 0); });
+  if (probes.empty() || !(seconds_per_substep > 0)) return 0;
+  double largest = 0;
+  for (const StepProbe& p : probes) largest = std::max(largest, p.particles);
+  // The two probes whose times are nearest the one asked about: the line is local.
+  const double want = seconds_per_substep;
+  std::sort(probes.begin(), probes.end(), [want](const StepProbe& a, const StepProbe& b) {
+    return std::abs(a.seconds - want) < std::abs(b.seconds - want) ||
+           (std::abs(a.seconds - want) == std::abs(b.seconds - want) && a.particles < b.particles);
+  });
+  const StepProbe& p0 = probes[0];
+  double n = p0.particles * want / p0.seconds;  // t ∝ N through the nearest probe
+  if (probes.size() >= 2 && probes[1].particles != p0.particles) {
+    const StepProbe& p1 = probes[1];
+    const double b = (p1.seconds - p0.seconds) / (p1.particles - p0.particles);
+    if (b > 0) {
+      const double a = p0.seconds - b * p0.particles;
+      n = a >= want ? 0 : (want - a) / b;  // a ≥ want: the fixed part alone is over the time
+    }
+  }
+  return std::clamp(n, 0.0, 2 * largest);
+}
+
+double measure_particle_substeps_per_thread(const SimSpec& profile_spec, int threads, double wall_s) {
+  SimSpec spec = profile_spec;
+  spec.backend = "cpu";
+  const std::unique_ptr<Simulation> sim = make_simulation(spec, threads);
+  const double fluid = double(sim->stats().fluid_particles);
+  if (fluid <= 0) return 0;
+  return fluid / median_substep_seconds(*sim, wall_s) / std::max(1, threads);
 }
 
 double realtime_calm_share(int dimension) { return dimension == 3 ? 0.75 : 0.6; }
@@ -66,9 +95,9 @@ std::string RealtimeProfile::describe() const {
   if (!applied) return "as written";
   return fmt::format("real-time profile: pbf ({}-{} iterations), fluid.spacing {:.4g} m, {:.0f} fluid "
                      "particles at most, emitters included (budget {:.0f}, from {:.3g} particle-substeps/s "
-                     "per solver thread, {})",
+                     "{}, {})",
                      spec.pbf_iterations, std::max(spec.pbf_iterations, spec.pbf_max_iterations),
-                     spec.spacing, fluid_particles, budget, rate_per_thread, rate_source);
+                     spec.spacing, fluid_particles, budget, rate_per_thread, rate_per, rate_source);
 }
 
 namespace {
@@ -92,7 +121,7 @@ double particles(const SimSpec& s) {
 
 }  // namespace
 
-RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, double rate_per_thread) {
+RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, double rate_per_thread, bool finer) {
   RealtimeProfile r{scene};
   r.fluid_particles = particles(scene);
   if (!scene.viewer_realtime) return r;
@@ -113,6 +142,17 @@ RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, doubl
   for (int round = 0; round < 20 && r.fluid_particles > r.budget; ++round) {
     spacing *= std::max(1.01, std::pow(r.fluid_particles / r.budget, 1.0 / scene.dimension));
     r.fluid_particles = particles(at_spacing(r.spec, spacing));
+  }
+  // Finer where the budget holds more: the smallest spacing whose water still fits, by bisection
+  // (the count falls as the spacing grows; lo never fits, hi always does).
+  if (finer && spacing == scene.spacing && r.fluid_particles < r.budget) {
+    double lo = kRealtimeFinest * scene.spacing, hi = scene.spacing;
+    if (particles(at_spacing(r.spec, lo)) <= r.budget) hi = lo;
+    for (int i = 0; i < 40 && hi > lo && hi - lo > 1e-4 * hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (particles(at_spacing(r.spec, mid)) <= r.budget ? hi : lo) = mid;
+    }
+    spacing = hi;
   }
   if (spacing != scene.spacing) {
     r.spec = at_spacing(r.spec, spacing);

@@ -3,11 +3,15 @@
 // a spacing coarse enough that the viewer's solver threads keep up with real time. The budget
 // is measured, not derived: on the reference machine (docs/performance.md, "The viewer in real
 // time"), and by the viewer on the machine it runs on (measure_particle_substeps_per_thread).
+#include <functional>
 #include <string>
+#include <vector>
 
 #include "solvers/spec.h"
 
 namespace rtsph {
+
+class Simulation;
 
 /// Fluid particle-substeps per second one solver thread keeps up with in PBF, with the viewer
 /// drawing beside it (Mesa llvmpipe on the other core), on the reference 2-core machine.
@@ -18,6 +22,24 @@ double realtime_particle_substeps_per_thread(int dimension);
 /// rate_per_thread: fluid particle-substeps per second and thread (0: the reference machine's,
 /// realtime_particle_substeps_per_thread).
 double realtime_budget(const SimSpec& pbf_spec, int solver_threads, double rate_per_thread = 0);
+
+/// The median wall time (s) of a substep of `sim`, stepped on from where it is: one untimed
+/// substep (it sizes the scratch), then at least five, on until wall_s (at most 200). `sync`, when
+/// given, runs after each substep before the clock is read: a GPU backend only queues its work.
+double median_substep_seconds(Simulation& sim, double wall_s, const std::function<void()>& sync = {});
+
+/// One measurement of a device's substep cost at one size.
+struct StepProbe {
+  double particles = 0;  // fluid particles
+  double seconds = 0;    // median wall time of a substep
+};
+/// The fluid particles a device steps in `seconds_per_substep`, from probes of its cost: on the
+/// line t = a + b·N through the two probes whose times are nearest it (a GPU's cost per substep
+/// has a fixed part, its dispatches and barriers, that dominates small sizes; 0 when that part
+/// alone is over the time), or t ∝ N through the nearest probe when there is one probe or the
+/// two do not rise with N. Never more than twice the largest size probed: the line is not
+/// trusted far beyond what was measured. 0 when no probe has a positive time.
+double particles_in_time(std::vector<StepProbe> probes, double seconds_per_substep);
 
 /// This machine's rate, measured: steps `profile_spec` (a profile's spec, on the CPU) from rest
 /// with `threads` threads for about wall_s of wall time (at least a few substeps) and returns the
@@ -45,15 +67,23 @@ struct RealtimeProfile {
   // Where that rate came from, for describe(): the reference machine's unless a caller gave one
   // (the viewer: "measured on this machine", "--realtime-rate").
   std::string rate_source = "the reference machine's";
+  std::string rate_per = "per solver thread";  // "on the GPU" where one device steps it
   std::string describe() const;  // one line for the terminal and the panel
 };
 
 /// The scene as the viewer runs it with `solver_threads` threads: unchanged unless
-/// viewer.realtime is set; then method pbf with 3 to 4 iterations, and fluid.spacing grown (never shrunk) until the
+/// viewer.realtime is set; then method pbf with 3 to 4 iterations, and fluid.spacing grown until the
 /// starting fluid plus the most its emitters may add fits the budget. Emitter caps scale with
 /// the particle volume, so the scene keeps its amount of water. The result is validated like
 /// any scene.
 /// rate_per_thread as for realtime_budget (0: the reference machine's).
-RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, double rate_per_thread = 0);
+/// finer: where the budget holds more than the scene, shrink the spacing until the water fills
+/// it, down to a quarter of the scene's (kRealtimeFinest). The GPU's budget does (it is measured
+/// at the sizes it is used at); the CPU's does not, as its per-thread model was only measured on
+/// two cores, and the scene's spacing is the finest it runs.
+RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, double rate_per_thread = 0,
+                                 bool finer = false);
+/// The finest spacing a real-time profile refines a scene to, over the scene's own.
+inline constexpr double kRealtimeFinest = 0.25;
 
 }  // namespace rtsph

@@ -172,6 +172,15 @@ echo "$out" | grep -q "this machine steps" && { echo "FAIL: measured despite --r
 echo "$out" | grep -q "10350 fluid particles at most.*--realtime-rate)" ||
   { echo "FAIL: --realtime-rate 1.26e6 not the reference budget:"; echo "$out"; fail=1; }
 
+# On the GPU backend the budget is the GPU's own (here llvmpipe's, which keeps few particles in
+# real time): probed at a few sizes, and the profile names it.
+out=$(timeout 300 bash -c "$(declare -f run_x); run_x \"$bin\" view --backend gpu --frames 2" 2>&1)
+echo "$out" | grep -q "this GPU keeps [0-9]* fluid particles of dam_break_3d in real time (PBF substeps of [0-9]* particles" ||
+  { echo "FAIL: no GPU measurement line"; echo "$out"; fail=1; }
+echo "$out" | grep -q "this machine steps" && { echo "FAIL: the CPU was measured for the GPU backend"; fail=1; }
+echo "$out" | grep -q "(3D, pbf, gpu backend)" || { echo "FAIL: not on the GPU backend:"; echo "$out"; fail=1; }
+echo "$out" | grep -q "measured on this GPU)" || { echo "FAIL: profile does not name the GPU's rate"; fail=1; }
+
 # No OpenGL 4.3 (Mesa told to offer 3.3): one line on stderr, non-zero exit.
 out=$(MESA_GL_VERSION_OVERRIDE=3.3 timeout 120 bash -c "$(declare -f run_x); run_x \"$bin\" view dam_break_2d --frames 3" 2>&1)
 rc=$?

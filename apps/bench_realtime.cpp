@@ -14,6 +14,8 @@
 #include "apps/bench.h"
 #include "apps/sim_backend.h"
 #include "io/atomic_file.h"
+#include "scene/realtime_profile.h"
+#include "scene/scene.h"
 #include "solvers/simulation.h"
 
 namespace rtsph::app {
@@ -95,6 +97,21 @@ int bench_realtime(const BenchOptions& o) {
   else
     fmt::print("real-time capacity: none: even the smallest dam break tried runs slower than "
                "real time\n");
+  // On the GPU, what the viewer's start-up probe budgets for the same machine (docs/viewer.md,
+  // "Real-time profile"), to set beside the capacity: its own profile (3 to 4 iterations, from
+  // rest, 75% or 60% of a substep's real time), not this search's first simulated second.
+  DeviceBudget viewer;
+  if (o.backend == "gpu" && o.method == "pbf") {
+    const SimSpec dam = load_scene(o.dim == 3 ? "dam_break_3d" : "dam_break_2d");
+    viewer = measure_device_budget(realtime_profile(dam, 1).spec, realtime_calm_share(o.dim),
+                                   kRealtimeFinest * dam.spacing, [&](const SimSpec& spec) {
+      auto sim = BackendSimulation::make(spec, threads, "gpu");
+      return StepProbe{double(sim->stats().fluid_particles),
+                       median_substep_seconds(*sim, 0.3, [&] { sim->wait_idle(); })};
+    });
+    fmt::print("the viewer's budget on this GPU: {:.0f} fluid particles (probes: {})\n", viewer.particles,
+               viewer.describe());
+  }
   if (!o.json.empty()) {
     nlohmann::ordered_json j;
     j["dimension"] = o.dim;
@@ -105,6 +122,7 @@ int bench_realtime(const BenchOptions& o) {
     j["set"] = o.sets;
     j["capacity_fluid_particles"] = best;
     j["probes"] = rows;
+    if (!viewer.probes.empty()) j["viewer_budget_fluid_particles"] = viewer.particles;
     io::write_file_atomic(o.json, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
   }
   return 0;

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "scene/realtime_profile.h"
 #include "scene/scene.h"
@@ -202,6 +203,34 @@ TEST(RealtimeProfile, ParticlesInTimeFitsAFixedAndAPerParticleCost) {
   EXPECT_EQ(particles_in_time({{1e4, 0}}, 1e-3), 0);
   // A cost that does not rise with N (noise): t ∝ N through the nearest probe (the smaller, on a tie).
   EXPECT_NEAR(particles_in_time({{2e4, 2e-3}, {1e4, 2e-3}}, 1e-3), 5e3, 1e-6);
+}
+
+// measure_device_budget against a device whose substep costs 1 ms + N / 5e7 s (3D dam break:
+// 120 substeps a second, 75% of 8.33 ms = 6.25 ms allowed, so 262,500 particles): from the CPU
+// reference size it probes upward at most 8 times per step and lands within the 20% it stops at.
+TEST(RealtimeProfile, DeviceBudgetProbesUpToTheSizeThatFits) {
+  const SimSpec scene = load_scene("dam_break_3d");
+  const RealtimeProfile start = realtime_profile(scene, 1);
+  std::vector<double> sizes;
+  const DeviceBudget b = measure_device_budget(start.spec, 0.75, 0.25 * scene.spacing, [&](const SimSpec& s) {
+    const double n = count_particles(s).fluid;
+    sizes.push_back(n);
+    return StepProbe{n, 1e-3 + n / 5e7};
+  });
+  ASSERT_GE(b.probes.size(), 2u);
+  EXPECT_LE(b.probes.size(), 4u);
+  EXPECT_NEAR(sizes.front(), start.fluid_particles, 0.5);  // the first probe is the profile as given
+  for (std::size_t i = 1; i < sizes.size(); ++i) EXPECT_LE(sizes[i], 8.5 * sizes[i - 1]);
+  const double expected = (6.25e-3 - 1e-3) * 5e7;
+  EXPECT_NEAR(b.particles, expected, 0.01 * expected);  // the model is a line: the fit is exact
+  EXPECT_NEAR(b.rate, b.particles * 120, 1e-6 * b.rate);
+  EXPECT_NE(b.describe().find(" particles "), std::string::npos);
+  // A device slower than the time at any size: nothing fits, and it stops probing.
+  const DeviceBudget slow = measure_device_budget(start.spec, 0.75, 0.25 * scene.spacing, [](const SimSpec& s) {
+    const double n = count_particles(s).fluid;
+    return StepProbe{n, 10e-3 + n / 5e7};
+  });
+  EXPECT_EQ(slow.particles, 0);
 }
 
 }  // namespace

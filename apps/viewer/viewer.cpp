@@ -130,19 +130,16 @@ double Viewer::machine_rate(int dimension) {
   const RealtimeProfile reference = realtime_profile(dam, threads_);
   const double t0 = now_s();
   if (backend_.name == "gpu") {
-    const GpuBudget g = measure_gpu_budget(reference.spec, realtime_calm_share(dimension),
+    const DeviceBudget g = measure_gpu_budget(reference.spec, realtime_calm_share(dimension),
                                            kRealtimeFinest * dam.spacing, 0.3);
     // At least a 16th of the CPU reference's, as on the CPU: a software GL (asked for with
     // --backend gpu) would otherwise make the scene a few hundred particles.
     rate = std::max(g.rate, realtime_particle_substeps_per_thread(dimension) / 16);
-    std::string probes;
-    for (const StepProbe& p : g.probes)
-      probes += fmt::format("{}{:.0f} particles {:.2f} ms", probes.empty() ? "" : ", ", p.particles, 1e3 * p.seconds);
     std::fprintf(stderr,
                  "rtsph view: this GPU keeps %.0f fluid particles of %s in real time (PBF substeps of %s; "
                  "%.0f%% of each substep's real time; %.1f s): %.3g particle-substeps/s; the real-time profile "
                  "budgets %.3g (at least a 16th of the CPU reference machine's)\n",
-                 g.particles, dam.name.c_str(), probes.c_str(), 100 * realtime_calm_share(dimension), now_s() - t0,
+                 g.particles, dam.name.c_str(), g.describe().c_str(), 100 * realtime_calm_share(dimension), now_s() - t0,
                  g.rate, rate);
     return rate;
   }

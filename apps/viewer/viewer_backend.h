@@ -20,18 +20,8 @@ struct ViewerBackend {
 ViewerBackend choose_viewer_backend(const std::string& flag, const SimSpec& spec);
 
 /// What the GPU keeps in real time with a real-time profile's PBF (issue 10: the viewer's budget
-/// on a GPU is the GPU's, not the CPU reference machine's).
-struct GpuBudget {
-  double particles = 0;  // fluid particles whose median substep takes `share` of its real time
-  double rate = 0;       // the same as fluid particle-substeps per second (realtime_budget's rate)
-  std::vector<StepProbe> probes;  // what was measured
-};
-/// Steps `profile` (a real-time profile's spec, from rest) on the GPU at up to four spacings, no
-/// finer than `finest` m, each for about wall_s, and fits particles_in_time to the probes. A
-/// GPU's substep has a fixed cost (dispatches, barriers) that dominates small sizes, so one
-/// probe at the CPU's size would say little about the size it keeps up with; each next probe is
-/// sized from the line through the last ones (at most 8 times the size before). Needs the GL
-/// context current.
-GpuBudget measure_gpu_budget(const SimSpec& profile, double share, double finest, double wall_s);
+/// on a GPU is the GPU's, not the CPU reference machine's): measure_device_budget with probes
+/// on the GPU backend in the current context (each about wall_s of substeps).
+DeviceBudget measure_gpu_budget(const SimSpec& profile, double share, double finest, double wall_s);
 
 }  // namespace rtsph::app

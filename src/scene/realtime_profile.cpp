@@ -50,13 +50,14 @@ double median_substep_seconds(Simulation& sim, double wall_s, const std::functio
   return std::max(times[times.size() / 2], 1e-9);
 }
 
-double particles_in_time(std::vector<StepProbe> probes, double seconds_per_substep) {
+namespace {
+
+// particles_in_time without its bound: where the line through the nearest probes reaches the time
+// (0 when nothing fits, or no probe is usable).
+double on_the_line(std::vector<StepProbe> probes, double want) {
   std::erase_if(probes, [](const StepProbe& p) { return !(p.seconds > 0) || !(p.particles > 0); });
-  if (probes.empty() || !(seconds_per_substep > 0)) return 0;
-  double largest = 0;
-  for (const StepProbe& p : probes) largest = std::max(largest, p.particles);
+  if (probes.empty() || !(want > 0)) return 0;
   // The two probes whose times are nearest the one asked about: the line is local.
-  const double want = seconds_per_substep;
   std::sort(probes.begin(), probes.end(), [want](const StepProbe& a, const StepProbe& b) {
     return std::abs(a.seconds - want) < std::abs(b.seconds - want) ||
            (std::abs(a.seconds - want) == std::abs(b.seconds - want) && a.particles < b.particles);
@@ -71,7 +72,47 @@ double particles_in_time(std::vector<StepProbe> probes, double seconds_per_subst
       n = a >= want ? 0 : (want - a) / b;  // a ≥ want: the fixed part alone is over the time
     }
   }
-  return std::clamp(n, 0.0, 2 * largest);
+  return std::max(n, 0.0);
+}
+
+}  // namespace
+
+double particles_in_time(std::vector<StepProbe> probes, double seconds_per_substep) {
+  double largest = 0;
+  for (const StepProbe& p : probes)
+    if (p.seconds > 0) largest = std::max(largest, p.particles);
+  return std::min(on_the_line(std::move(probes), seconds_per_substep), 2 * largest);
+}
+
+DeviceBudget measure_device_budget(const SimSpec& profile, double share, double finest,
+                                   const std::function<StepProbe(const SimSpec&)>& probe) {
+  DeviceBudget out;
+  const double substeps_per_s = std::max(1, profile.pbf_substeps) / profile.pbf_time_step;
+  const double target = share / substeps_per_s;  // wall seconds a substep may take
+  double spacing = profile.spacing;
+  for (int round = 0; round < 4; ++round) {
+    SimSpec s = profile;
+    s.spacing = spacing;
+    const StepProbe p = probe(s);
+    if (!(p.particles > 0) || !(p.seconds > 0)) break;
+    out.probes.push_back(p);
+    if (std::abs(p.seconds - target) < 0.2 * target) break;  // close enough: the fit is local
+    // The next size from the line itself (particles_in_time's bound would only double it).
+    const double next = std::clamp(on_the_line(out.probes, target), p.particles / 8, 8 * p.particles);
+    const double to = std::max(finest, spacing * std::pow(p.particles / next, 1.0 / profile.dimension));
+    if (std::abs(to - spacing) < 0.02 * spacing) break;  // the next size would be this one
+    spacing = to;
+  }
+  out.particles = particles_in_time(out.probes, target);
+  out.rate = out.particles * substeps_per_s;
+  return out;
+}
+
+std::string DeviceBudget::describe() const {
+  std::string s;
+  for (const StepProbe& p : probes)
+    s += fmt::format("{}{:.0f} particles {:.2f} ms", s.empty() ? "" : ", ", p.particles, 1e3 * p.seconds);
+  return s;
 }
 
 double measure_particle_substeps_per_thread(const SimSpec& profile_spec, int threads, double wall_s) {

@@ -41,6 +41,23 @@ struct StepProbe {
 /// trusted far beyond what was measured. 0 when no probe has a positive time.
 double particles_in_time(std::vector<StepProbe> probes, double seconds_per_substep);
 
+/// What a device keeps in real time with a real-time profile's PBF: the fluid particles whose
+/// median substep takes `share` of the real time it stands for, from probes of the profile at up
+/// to four spacings, no finer than `finest` (m). A GPU's substep has a fixed cost (dispatches,
+/// barriers) that dominates small sizes, so one probe at a CPU's size would say little: the first
+/// probe is at the profile's spacing, each next one sized from particles_in_time of the probes so
+/// far (at most 8 times the size before), until one is within 20% of the time.
+/// probe(spec) builds a simulation of spec on the device, from rest, and returns its fluid
+/// particles and median substep time (median_substep_seconds).
+struct DeviceBudget {
+  double particles = 0;  // particles_in_time of the probes
+  double rate = 0;       // the same as fluid particle-substeps per second (realtime_budget's rate)
+  std::vector<StepProbe> probes;
+  std::string describe() const;  // "10350 particles 1.52 ms, 43000 particles 2.61 ms, ..."
+};
+DeviceBudget measure_device_budget(const SimSpec& profile, double share, double finest,
+                                   const std::function<StepProbe(const SimSpec&)>& probe);
+
 /// This machine's rate, measured: steps `profile_spec` (a profile's spec, on the CPU) from rest
 /// with `threads` threads for about wall_s of wall time (at least a few substeps) and returns the
 /// fluid particle-substeps per second and thread of its median substep.

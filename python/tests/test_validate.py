@@ -147,6 +147,28 @@ def test_virial_pressure_of_a_uniform_lattice_is_the_eos_pressure(dim):
     assert vc0 == 0 and vp0 == vp
 
 
+# Still water's measures (rtsph.validate.tanks): drift is the water's motion, the mean over the
+# particles starting in each cube, so a uniform shift reads in full and neighbours trading places
+# read nothing; the nearest neighbour of a lattice is its spacing.
+def test_still_water_drift_is_the_waters_not_a_particles():
+    from rtsph.validate.tanks import _coherent_drift, _nearest_neighbour
+    s, n = 0.025, 8
+    grid = np.stack(np.meshgrid(*[(np.arange(n) + 0.5) * s] * 3, indexing="ij"), -1).reshape(-1, 3)
+    shifted = grid + np.array([0.3 * s, 0.0, -0.4 * s])
+    assert abs(_coherent_drift(grid, shifted, 4 * s) / s - 0.5) < 1e-9
+    # Every particle trades places with its x neighbour (a move of a whole spacing each): the
+    # mean over each cube of 4 spacings (an even number of columns) does not move.
+    swapped = grid.copy()
+    swapped[:, 0] += np.where(np.floor(grid[:, 0] / s) % 2 == 0, s, -s)
+    assert np.max(np.linalg.norm(swapped - grid, axis=1)) / s == pytest.approx(1.0)
+    assert _coherent_drift(grid, swapped, 4 * s) < 1e-12
+    nn = _nearest_neighbour(grid) / s
+    assert np.allclose(nn, 1.0)
+    clumped = grid.copy()
+    clumped[0] = clumped[1] + np.array([0.0, 0.0, -0.3 * s])  # particle 0 onto its neighbour
+    assert _nearest_neighbour(clumped).min() / s == pytest.approx(0.3)
+
+
 # The two issue-13 cases' references and scenes: the incompressible ellipse keeps its area and
 # starts as the free strain b = R e^{A0 t}; the Couette series starts at rest and ends linear.
 def test_elliptical_drop_reference():

@@ -90,10 +90,44 @@ def hydrostatic(dim: int):
 # method rearranges it in the first second (90% of the particles end 0.6-1 spacing from their
 # lattice site, measured, whatever the kernel), and a weakly compressible fluid sampled at ρ0
 # first settles under its own weight and sloshes (rms 0.07 m/s after 0.25 s). So WCSPH starts
-# hydrostatically compressed (fluid.hydrostatic_start), and the drift bound is on the motion after
-# the settling time: no particle may move more than a spacing from where it was at t_settle. The
-# displacement from the lattice is reported too.
+# hydrostatically compressed (fluid.hydrostatic_start), and the bounds are on the state after a
+# settling time. The issue names three properties: no drift, no clumping, and bounded kinetic
+# energy and density error.
+# - Drift is motion of the water, not of single particles: the particles go on rearranging at
+#   the particle scale (a particle moves up to 1.2 spacings between t = 1 and 3 s with every
+#   method), and that swaps neighbours without moving any water. So the drift is the mean
+#   displacement after t_settle over the particles that started in each cube of DRIFT_CELL
+#   spacings, the largest over the cubes, bounded by a spacing (session 18: those means are 3-7
+#   times what random rearrangement of the same particles would give, so they do see the slow
+#   circulations there are). The largest single displacement is reported.
+# - Clumping: particles pairing up. The bound: every particle's nearest neighbour at least half
+#   a spacing away at the end.
 STILL_LEVELS = {"quick": (0.025, 3.0, 1.0), "full": (0.02, 10.0, 2.0)}  # spacing (m), t_end, t_settle (s)
+DRIFT_CELL = 4         # spacings: the cubes the drift is averaged over
+CLUMP_DISTANCE = 0.5   # spacings: the nearest neighbour's least distance
+
+
+def _coherent_drift(x_from: np.ndarray, x_to: np.ndarray, cell: float) -> float:
+    """The largest |mean displacement| over the particles starting in each cube of side `cell`."""
+    c = np.floor(x_from / cell).astype(np.int64)
+    _, inv = np.unique(c, axis=0, return_inverse=True)
+    inv = inv.reshape(-1)
+    count = np.bincount(inv)
+    d = x_to - x_from
+    mean = np.stack([np.bincount(inv, weights=d[:, k]) / count for k in range(d.shape[1])], axis=1)
+    return float(np.max(np.linalg.norm(mean, axis=1)))
+
+
+def _nearest_neighbour(x: np.ndarray) -> np.ndarray:
+    """Each particle's distance to its nearest other particle (brute force in blocks: a few
+    thousand particles)."""
+    n = len(x)
+    out = np.empty(n)
+    for a in range(0, n, 256):
+        d2 = np.sum((x[a:a + 256, None, :] - x[None, :, :]) ** 2, axis=-1)
+        d2[np.arange(d2.shape[0]), a + np.arange(d2.shape[0])] = np.inf
+        out[a:a + 256] = np.sqrt(d2.min(axis=1))
+    return out
 
 
 def still_water(method: str, level: str, threads: int) -> Result:
@@ -117,28 +151,36 @@ def still_water(method: str, level: str, threads: int) -> Result:
     x_settled = sim.positions.astype(np.float64)
     sim.run(until=t_end, every=t_end / 50, callback=record)
     x_end = sim.positions.astype(np.float64)
-    drift = float(np.max(np.linalg.norm(x_end - x_settled, axis=1))) / s
+    single = float(np.max(np.linalg.norm(x_end - x_settled, axis=1))) / s
+    drift = _coherent_drift(x_settled, x_end, DRIFT_CELL * s) / s
     from_lattice = float(np.max(np.linalg.norm(x_end - x0, axis=1))) / s
+    nn = _nearest_neighbour(x_end) / s
     mass = 1000.0 * 0.4 * 0.24 * 0.4
     v_rms = math.sqrt(2 * KE[-1] / mass)
     # Stated bounds, each a ratio that must stay ≤ 1: rms speed at the end ≤ 1% of the
-    # gravity-wave speed sqrt(g H); no particle further than one spacing from where it was at
-    # t_settle; mean compression ≤ 1%.
+    # gravity-wave speed sqrt(g H); the water's mean displacement after t_settle in any cube of
+    # DRIFT_CELL spacings ≤ one spacing; no two particles closer than CLUMP_DISTANCE spacings at
+    # the end; mean compression ≤ 1%.
     v_bound = 0.01 * math.sqrt(G * 0.24)
-    ratios = {"speed": v_rms / v_bound, "drift": drift, "density": RHO[-1] / 0.01}
+    ratios = {"speed": v_rms / v_bound, "drift": drift, "clumping": CLUMP_DISTANCE / max(float(nn.min()), 1e-9),
+              "density": RHO[-1] / 0.01}
     r = Result(case="still_water_3d", method=method,
-               metric=f"worst of: rms speed / 1% of sqrt(gH), displacement after t = {t_settle:g} s / spacing, "
-                      "mean compression / 1%",
+               metric=(f"worst of: rms speed / 1% of sqrt(gH), mean displacement after t = {t_settle:g} s over "
+                       f"cubes of {DRIFT_CELL} spacings / spacing, {CLUMP_DISTANCE:g} spacing / nearest pair, "
+                       "mean compression / 1%"),
                error=max(ratios.values()), tolerance=1.0, particles=sim.particle_count, wall_s=time.perf_counter() - t0,
                setup=(f"0.4 m box, water H = 0.24 m deep, spacing {s} m, {t_end} s at rest, default parameters, "
                       f"hydrostatic start (WCSPH); drift measured from t = {t_settle:g} s"),
                reference="rest: no flow, no drift, no clumping",
-               notes=(f"rms speed {v_rms:.3g} m/s (bound {v_bound:.3g}); largest displacement after t = "
-                      f"{t_settle:g} s {drift:.2f} spacings (from the initial lattice {from_lattice:.2f}); "
-                      f"mean density error at the end {100 * RHO[-1]:.3f}%"),
+               notes=(f"rms speed {v_rms:.3g} m/s (bound {v_bound:.3g}); drift after t = {t_settle:g} s "
+                      f"{drift:.2f} spacings (a single particle's largest displacement {single:.2f}, from the "
+                      f"initial lattice {from_lattice:.2f}); nearest neighbour at the end {nn.min():.3f} spacings at "
+                      f"least, {np.percentile(nn, 1):.3f} for the closest 1%; mean density error at the end "
+                      f"{100 * RHO[-1]:.3f}%; worst ratio: {max(ratios, key=ratios.get)}"),
                series={"t_s": T, "kinetic_energy_j": KE, "mean_density_error": RHO},
-               extra={"v_rms": v_rms, "max_displacement_spacings": drift,
-                      "max_displacement_from_lattice_spacings": from_lattice, "mean_density_error": RHO[-1]})
+               extra={"v_rms": v_rms, "drift_spacings": drift, "max_displacement_spacings": single,
+                      "max_displacement_from_lattice_spacings": from_lattice, "nearest_neighbour_spacings": float(nn.min()),
+                      "mean_density_error": RHO[-1], **{f"ratio_{k}": v for k, v in ratios.items()}})
 
     def plot(ax, res):
         ax.semilogy(res.series["t_s"], np.maximum(res.series["kinetic_energy_j"], 1e-12), "-", label=f"rtsph {res.method}")

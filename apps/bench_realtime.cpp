@@ -15,7 +15,6 @@
 #include "apps/sim_backend.h"
 #include "io/atomic_file.h"
 #include "scene/realtime_profile.h"
-#include "scene/scene.h"
 #include "solvers/simulation.h"
 
 namespace rtsph::app {
@@ -102,12 +101,8 @@ int bench_realtime(const BenchOptions& o) {
   // rest, 75% or 60% of a substep's real time), not this search's first simulated second.
   DeviceBudget viewer;
   if (o.backend == "gpu" && o.method == "pbf") {
-    const SimSpec dam = load_scene(o.dim == 3 ? "dam_break_3d" : "dam_break_2d");
-    viewer = measure_device_budget(realtime_profile(dam, 1).spec, realtime_calm_share(o.dim),
-                                   kRealtimeFinest * dam.spacing, [&](const SimSpec& spec) {
-      auto sim = BackendSimulation::make(spec, threads, "gpu");
-      return StepProbe{double(sim->stats().fluid_particles),
-                       median_substep_seconds(*sim, 0.3, [&] { sim->wait_idle(); })};
+    viewer = dam_break_device_budget(o.dim, [&](const SimSpec& spec) {
+      return probe_substeps(*BackendSimulation::make(spec, threads, "gpu"), 0.3);
     });
     fmt::print("the viewer's budget on this GPU: {:.0f} fluid particles (probes: {})\n", viewer.particles,
                viewer.describe());

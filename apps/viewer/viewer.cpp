@@ -127,11 +127,9 @@ double Viewer::machine_rate(int dimension) {
   double& rate = machine_rate_[std::clamp(dimension, 0, 3)];
   if (rate > 0) return rate;
   const SimSpec dam = load_scene(dimension == 3 ? "dam_break_3d" : "dam_break_2d");
-  const RealtimeProfile reference = realtime_profile(dam, threads_);
   const double t0 = now_s();
   if (backend_.name == "gpu") {
-    const DeviceBudget g = measure_gpu_budget(reference.spec, realtime_calm_share(dimension),
-                                           kRealtimeFinest * dam.spacing, 0.3);
+    const DeviceBudget g = measure_gpu_budget(dimension, 0.3);
     // At least a 16th of the CPU reference's, as on the CPU: a software GL (asked for with
     // --backend gpu) would otherwise make the scene a few hundred particles.
     rate = std::max(g.rate, realtime_particle_substeps_per_thread(dimension) / 16);
@@ -143,6 +141,7 @@ double Viewer::machine_rate(int dimension) {
                  g.rate, rate);
     return rate;
   }
+  const RealtimeProfile reference = realtime_profile(dam, threads_);
   const double measured = measure_particle_substeps_per_thread(reference.spec, threads_, 0.4);
   rate = calibrated_rate(measured, dimension);
   std::fprintf(stderr,

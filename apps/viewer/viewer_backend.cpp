@@ -25,14 +25,11 @@ ViewerBackend choose_viewer_backend(const std::string& flag, const SimSpec& spec
   return b;
 }
 
-DeviceBudget measure_gpu_budget(const SimSpec& profile, double share, double finest, double wall_s) {
-  return measure_device_budget(profile, share, finest, [wall_s](const SimSpec& spec) {
+DeviceBudget measure_gpu_budget(int dimension, double wall_s) {
+  return dam_break_device_budget(dimension, [wall_s](const SimSpec& spec) {
     SimSpec s = spec;
     s.backend = "gpu";
-    const std::unique_ptr<Simulation> sim = gpu::make_gpu_simulation(s, 1);
-    // wait_idle: the GPU backend queues a substep's passes; the clock must see them run.
-    return StepProbe{double(sim->stats().fluid_particles),
-                     median_substep_seconds(*sim, wall_s, [&] { sim->wait_idle(); })};
+    return probe_substeps(*gpu::make_gpu_simulation(s, 1), wall_s);
   });
 }
 

@@ -3,7 +3,6 @@
 // context current: auto picks the GPU on a hardware driver when the GPU backend runs the scene,
 // else the CPU (software rasterisers such as llvmpipe are far slower than the CPU solver).
 #include <string>
-#include <vector>
 
 #include "apps/viewer/sim_runner.h"
 #include "scene/realtime_profile.h"
@@ -20,8 +19,8 @@ struct ViewerBackend {
 ViewerBackend choose_viewer_backend(const std::string& flag, const SimSpec& spec);
 
 /// What the GPU keeps in real time with a real-time profile's PBF (issue 10: the viewer's budget
-/// on a GPU is the GPU's, not the CPU reference machine's): measure_device_budget with probes
+/// on a GPU is the GPU's, not the CPU reference machine's): dam_break_device_budget with probes
 /// on the GPU backend in the current context (each about wall_s of substeps).
-DeviceBudget measure_gpu_budget(const SimSpec& profile, double share, double finest, double wall_s);
+DeviceBudget measure_gpu_budget(int dimension, double wall_s);
 
 }  // namespace rtsph::app

@@ -31,10 +31,10 @@ double realtime_budget(const SimSpec& pbf_spec, int solver_threads, double rate_
   return rate * std::max(1, solver_threads) / substeps_per_s;
 }
 
-double median_substep_seconds(Simulation& sim, double wall_s, const std::function<void()>& sync) {
+double median_substep_seconds(Simulation& sim, double wall_s) {
   using clock = std::chrono::steady_clock;
   sim.step();  // the first substep sizes the scratch; not timed
-  if (sync) sync();
+  sim.wait_idle();
   std::vector<double> times;
   const auto start = clock::now();
   auto elapsed = [&] { return std::chrono::duration<double>(clock::now() - start).count(); };
@@ -42,12 +42,16 @@ double median_substep_seconds(Simulation& sim, double wall_s, const std::functio
   while (times.size() < 5 || (times.size() < 200 && elapsed() < wall_s)) {
     const auto t0 = clock::now();
     sim.step();
-    if (sync) sync();
+    sim.wait_idle();
     times.push_back(std::chrono::duration<double>(clock::now() - t0).count());
   }
   // The median: a shared machine's hiccup moves the mean of so few substeps.
   std::nth_element(times.begin(), times.begin() + times.size() / 2, times.end());
   return std::max(times[times.size() / 2], 1e-9);
+}
+
+StepProbe probe_substeps(Simulation& sim, double wall_s) {
+  return {double(sim.stats().fluid_particles), median_substep_seconds(sim, wall_s)};
 }
 
 namespace {
@@ -95,7 +99,10 @@ DeviceBudget measure_device_budget(const SimSpec& profile, double share, double 
     s.spacing = spacing;
     const StepProbe p = probe(s);
     if (!(p.particles > 0) || !(p.seconds > 0)) break;
+    const bool again = std::any_of(out.probes.begin(), out.probes.end(),
+                                   [&](const StepProbe& q) { return q.particles == p.particles; });
     out.probes.push_back(p);
+    if (again) break;  // the lattice's rounding gave a size already probed: nothing new to learn
     if (std::abs(p.seconds - target) < 0.2 * target) break;  // close enough: the fit is local
     // The next size from the line itself (particles_in_time's bound would only double it).
     const double next = std::clamp(on_the_line(out.probes, target), p.particles / 8, 8 * p.particles);
@@ -106,6 +113,12 @@ DeviceBudget measure_device_budget(const SimSpec& profile, double share, double 
   out.particles = particles_in_time(out.probes, target);
   out.rate = out.particles * substeps_per_s;
   return out;
+}
+
+DeviceBudget dam_break_device_budget(int dimension, const std::function<StepProbe(const SimSpec&)>& probe) {
+  const SimSpec dam = load_scene(dimension == 3 ? "dam_break_3d" : "dam_break_2d");
+  return measure_device_budget(realtime_profile(dam, 1).spec, realtime_calm_share(dimension),
+                               kRealtimeFinest * dam.spacing, probe);
 }
 
 std::string DeviceBudget::describe() const {

@@ -24,15 +24,17 @@ double realtime_particle_substeps_per_thread(int dimension);
 double realtime_budget(const SimSpec& pbf_spec, int solver_threads, double rate_per_thread = 0);
 
 /// The median wall time (s) of a substep of `sim`, stepped on from where it is: one untimed
-/// substep (it sizes the scratch), then at least five, on until wall_s (at most 200). `sync`, when
-/// given, runs after each substep before the clock is read: a GPU backend only queues its work.
-double median_substep_seconds(Simulation& sim, double wall_s, const std::function<void()>& sync = {});
+/// substep (it sizes the scratch), then at least five, on until wall_s (at most 200). The clock
+/// is read after wait_idle(): a GPU backend only queues its work.
+double median_substep_seconds(Simulation& sim, double wall_s);
 
 /// One measurement of a device's substep cost at one size.
 struct StepProbe {
   double particles = 0;  // fluid particles
   double seconds = 0;    // median wall time of a substep
 };
+/// `sim`'s fluid particles and median_substep_seconds.
+StepProbe probe_substeps(Simulation& sim, double wall_s);
 /// The fluid particles a device steps in `seconds_per_substep`, from probes of its cost: on the
 /// line t = a + b·N through the two probes whose times are nearest it (a GPU's cost per substep
 /// has a fixed part, its dispatches and barriers, that dominates small sizes; 0 when that part
@@ -57,6 +59,11 @@ struct DeviceBudget {
 };
 DeviceBudget measure_device_budget(const SimSpec& profile, double share, double finest,
                                    const std::function<StepProbe(const SimSpec&)>& probe);
+/// measure_device_budget for the viewer's workload: the built-in dam break of that dimension, its
+/// real-time profile at the CPU reference budget to start from (10,350 particles in 3D), the
+/// calm share of realtime_calm_share, no finer than kRealtimeFinest of the scene's spacing. The
+/// viewer's GPU budget and `rtsph bench --realtime --backend gpu` both measure this.
+DeviceBudget dam_break_device_budget(int dimension, const std::function<StepProbe(const SimSpec&)>& probe);
 
 /// This machine's rate, measured: steps `profile_spec` (a profile's spec, on the CPU) from rest
 /// with `threads` threads for about wall_s of wall time (at least a few substeps) and returns the

@@ -421,6 +421,8 @@ void GpuWorld<D>::shift_particles_gpu(double dt) {
   bind_all();
   shift_delta_.bind(RTSPH_B_DELTA);
   shift_.set("coeff", Real(s.shifting * this->prm_.h * dt));
+  shift_.set("inv_w_dp", this->shifting_inv_w_dp());
+  shift_.set("most", this->shifting_max_shift());
   shift_.dispatch(this->fluid_.size());  // dispatch() ends in a barrier
   shift_apply_.dispatch(this->fluid_.size());
 }

@@ -157,8 +157,9 @@ const std::vector<ParamInfo>& parameter_table() {
       field<&SimSpec::shifting>({.key = "solver.shifting", .min = 0, .max = 10, .default_value = 0,
                                  .help = "Particle shifting (Lind et al. 2012): each step moves particles "
                                          "by -A h |v| dt grad C (Skillen et al. 2013) to keep their "
-                                         "arrangement uniform; 0 = off. WCSPH (both backends) and DFSPH. No free-surface "
-                                         "treatment yet: for confined or periodic flows (Taylor-Green).",
+                                         "arrangement uniform, with Lind's anti-clumping term; surface particles shift "
+                                         "only along the surface. 0 = off; 1 keeps still water steady, 2 feeds on "
+                                         "itself there. WCSPH and DFSPH, both backends.",
                                  .live = true}),
       field<&SimSpec::hydrostatic_start>({.key = "fluid.hydrostatic_start", .default_value = 0,
                                           .help = "WCSPH: start each fluid block compressed along gravity to the "

@@ -240,6 +240,10 @@ class FluidWorld : public Simulation {
   /// solver.shifting: moves each particle down its concentration gradient. Call right after
   /// update_neighbours(), before the density. Nothing when A = 0 (shifting.cpp).
   void shift_particles(double dt);
+  /// 1/W(Δp), Δp the initial spacing: the scale of the shift's anti-clumping weight.
+  Real shifting_inv_w_dp() const;
+  /// The largest shift in one step (m).
+  Real shifting_max_shift() const;
   /// With fluid.hydrostatic_start (a weakly compressible method's constructor calls it, before
   /// its first neighbour update): moves each particle of a fluid block along gravity so the
   /// block's lattice is compressed to the density ρ(d) its equation of state gives the

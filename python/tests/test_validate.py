@@ -234,3 +234,33 @@ def test_the_spheric_heights_are_in_probe_order():
     wet = {k: float(d["t"][np.argmax(d[k] > 0.02)]) for k in ("H1", "H2", "H3")}
     assert wet["H3"] < wet["H2"] < wet["H1"]
     assert abs(d["H4"][0] - 0.55) < 0.01
+
+
+def test_the_spheric_pressures_are_the_front_face_sensors_bottom_up():
+    # P1-P4 sit 0.021 ... 0.141 m up the box's front face; the wave runs along the floor, so it
+    # hits P1 first and P4 last. The record covers the first impact only, at about 1 ms.
+    from rtsph.validate.dam_breaks import SPHERIC_SENSORS, _impact_figures, _spheric_pressures
+    d = _spheric_pressures()
+    assert 0.38 < d["t"][0] < 0.39 and 0.54 < d["t"][-1] < 0.55
+    assert np.all(np.diff(d["t"]) > 0.0009) and np.all(np.diff(d["t"]) < 0.0012)
+    hits = [_impact_figures(d["t"], d[k])["t_hit"] for k in SPHERIC_SENSORS]
+    assert hits == sorted(hits) and hits[0] == pytest.approx(0.394)
+    assert max(_impact_figures(d["t"], d[k])["peak"] for k in SPHERIC_SENSORS) == pytest.approx(11239)
+
+
+def test_impact_figures_read_a_known_pulse():
+    from rtsph.validate.dam_breaks import _impact_figures
+    t = np.arange(0.38, 0.544, 0.001)
+    p = np.where(t < 0.40, 0.0, np.where(t < 0.42, 8000.0, 3000.0))
+    f = _impact_figures(t, p)
+    assert f["t_hit"] == pytest.approx(0.40, abs=1e-9) and f["peak"] == 8000.0
+    assert f["t_peak"] == pytest.approx(0.40, abs=1e-9) and f["plateau"] == pytest.approx(3000.0)
+
+
+def test_csv_columns_of_different_lengths_end_in_blanks(tmp_path):
+    from rtsph.validate import report
+    r = Result(case="x", method="wcsph", metric="m", error=0.0, tolerance=1.0, particles=1, wall_s=0.0,
+               setup="", reference="", series={"t_s": [0.0, 1.0, 2.0], "fine_t_s": [0.5]})
+    report.write_report(str(tmp_path), [r], level="quick", threads=1, wall_s=0.0)
+    lines = (tmp_path / "x_wcsph.csv").read_text().splitlines()
+    assert lines == ["t_s,fine_t_s", "0.0,0.5", "1.0,", "2.0,"]

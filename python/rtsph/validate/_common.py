@@ -46,6 +46,7 @@ class Result:
     wall_s: float = 0.0
     series: Dict[str, List[float]] = field(default_factory=dict)  # columns of the case's CSV
     plot: Optional[Callable] = None                                 # plot(ax, result)
+    side_plot: Optional[Callable] = None                            # a second panel, side_plot(ax, result)
     convergence: List[Tuple[float, float]] = field(default_factory=list)  # (spacing, error)
     extra: Dict[str, float] = field(default_factory=dict)           # other figures for the summary
 

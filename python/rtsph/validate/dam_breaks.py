@@ -137,6 +137,71 @@ def _spheric_data():
             (("t", "t_s"), ("H1", "H1_m"), ("H2", "H2_m"), ("H3", "H3_m"), ("H4", "H4_m"))}
 
 
+# MARIN's pressure sensors P1-P4 on the box's front face (x = 0.8245 m; the experiment's z is
+# rtsph's y): 0.471 m across the tank, 0.021 / 0.061 / 0.101 / 0.141 m above the floor. The data
+# file holds their first impact only (t = 0.383-0.543 s at ~1 ms; its header says why).
+SPHERIC_SENSORS = {"P1": 0.021, "P2": 0.061, "P3": 0.101, "P4": 0.141}
+SPHERIC_SENSOR_ACROSS = 0.471
+SPHERIC_FACE_X = 0.8245
+SPHERIC_IMPACT = (0.383, 0.543)   # s: the window the pressure record covers
+SPHERIC_PLATEAU = (0.48, 0.543)   # s: after the impact's peaks, the pressure of the water piled on the face
+SPHERIC_ARRIVAL_PA = 1000.0       # a sensor is hit when its pressure first passes this
+
+
+def _spheric_pressures():
+    path = os.path.join(os.path.dirname(__file__), "data", "spheric_test2_pressures.csv")
+    with open(path) as f:
+        lines = [ln.strip() for ln in f if ln.strip() and not ln.startswith("#")]
+    head = lines[0].split(",")
+    vals = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]])
+    return {"t": vals[:, head.index("t_s")], **{k: vals[:, head.index(f"{k}_pa")] for k in SPHERIC_SENSORS}}
+
+
+def _impact_figures(t, p):
+    """A sensor's first impact: its peak and when, when it first passes SPHERIC_ARRIVAL_PA, and its
+    mean over SPHERIC_PLATEAU (Pa, s)."""
+    t, p = np.asarray(t), np.asarray(p)
+    w = (t >= SPHERIC_IMPACT[0] - 1e-9) & (t <= SPHERIC_IMPACT[1] + 1e-9)
+    tw, pw = t[w], p[w]
+    i = int(np.argmax(pw))
+    hit = np.nonzero(pw > SPHERIC_ARRIVAL_PA)[0]
+    plateau = (tw >= SPHERIC_PLATEAU[0]) & (tw <= SPHERIC_PLATEAU[1])
+    return {"peak": float(pw[i]), "t_peak": float(tw[i]), "t_hit": float(tw[hit[0]]) if hit.size else float("nan"),
+            "plateau": float(np.mean(pw[plateau])) if plateau.any() else float("nan")}
+
+
+def spheric_heights_plot(ax, res):
+    """The four probes' water heights against MARIN's (a report panel; module level, so a saved
+    run's CSV can be drawn again)."""
+    data = _spheric_data()
+    w = data["t"] <= SPHERIC_T_END + 1e-9
+    color = None  # one colour per method, taken from its first line
+    for i, k in enumerate(SPHERIC_PROBES):
+        off = 0.6 * i
+        line, = ax.plot(res.series["t_s"], np.asarray(res.series[f"{k}_m"]) + off, "-", lw=0.9,
+                        label=f"rtsph {res.method}", **({} if color is None else {"color": color}))
+        color = line.get_color() if color is None else color
+        ax.plot(data["t"][w], data[k][w] + off, "k-", lw=0.6, label="MARIN (SPHERIC Test 2)")
+        ax.text(6.05, off + 0.02, k, fontsize=8)
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("water height (m), probes offset by 0.6 m")
+
+
+def spheric_pressures_plot(ax, res):
+    """P1 and P3 on the box's front face over the first impact, against MARIN's sensors."""
+    exp_p = _spheric_pressures()
+    t = np.asarray([v for v in res.series["t_impact_s"] if v is not None])
+    color = None
+    for k, style in (("P1", "-"), ("P3", "--")):
+        line, = ax.plot(t, np.asarray(res.series[f"{k}_pa"][:len(t)]) / 1e3, style, lw=0.9,
+                        label=f"rtsph {res.method} {k}", **({} if color is None else {"color": color}))
+        color = line.get_color() if color is None else color
+        ax.plot(exp_p["t"], exp_p[k] / 1e3, "k" + style, lw=0.7, label=f"MARIN {k}")
+    ax.set_xlabel("t (s)")
+    ax.set_ylabel("pressure on the box's front face (kPa)")
+    ax.set_title("first impact: P1 (0.021 m), P3 (0.101 m)")
+
+
 def spheric_test2(method: str, level: str, threads: int) -> Result:
     s = SPHERIC_LEVELS[level]
     r = Result(case="spheric_test2_3d", method=method,
@@ -170,7 +235,29 @@ def spheric_test2(method: str, level: str, threads: int) -> Result:
     R = max(0.05, 2.5 * s)
     # Pressure on the box's front face (the side the water hits, x = 0.8245 m): the mean pressure
     # of the fluid within 1.5 spacings of it, below 0.08 m and within 0.1 m of the centre line.
+    # And at MARIN's sensors P1-P4: the Shepard (kernel-weighted) mean of the fluid's pressure
+    # around the point half a spacing in front of each sensor, W with h = spacing (support 2h); 0
+    # while no particle is in reach (dry).
     T, H, PF = [], {k: [] for k in SPHERIC_PROBES}, []
+    TS, PS = [], {k: [] for k in SPHERIC_SENSORS}
+    sig = 1.0 / (math.pi * s ** 3)
+
+    next_record = [0.02 * math.ceil(SPHERIC_IMPACT[0] / 0.02 - 1e-9)]
+
+    def sensors(sim_):
+        if sim_.time >= next_record[0] - 1e-9:  # the heights go on at their 0.02 s through the window
+            record(sim_)
+            next_record[0] += 0.02
+        x = sim_.positions
+        p = sim_.pressure
+        TS.append(sim_.time)
+        near = np.abs(x[:, 0] - SPHERIC_FACE_X - 0.5 * s) < 2 * s
+        xn, pn = x[near], p[near]
+        for k, y in SPHERIC_SENSORS.items():
+            q = np.sqrt((xn[:, 0] - SPHERIC_FACE_X - 0.5 * s) ** 2 + (xn[:, 1] - y) ** 2
+                        + (xn[:, 2] - SPHERIC_SENSOR_ACROSS) ** 2) / s
+            w = sig * (0.25 * np.clip(2 - q, 0, None) ** 3 - np.clip(1 - q, 0, None) ** 3)
+            PS[k].append(float(np.sum(w * pn) / np.sum(w)) if np.sum(w) > 0 else 0.0)
 
     def record(sim_):
         x = sim_.positions
@@ -182,6 +269,8 @@ def spheric_test2(method: str, level: str, threads: int) -> Result:
         front = (x[:, 0] > 0.8245) & (x[:, 0] < 0.8245 + 1.5 * s) & (x[:, 1] < 0.08) & (np.abs(x[:, 2] - 0.5) < 0.1)
         PF.append(float(np.mean(sim_.pressure[front])) if front.any() else 0.0)
     record(sim)
+    sim.run(until=SPHERIC_IMPACT[0], every=0.02, callback=record)
+    sim.run(until=SPHERIC_IMPACT[1], every=0.001, callback=sensors)  # the impact at MARIN's ~1 ms
     sim.run(until=SPHERIC_T_END, every=0.02, callback=record)
     errs = {}
     window = data["t"] <= SPHERIC_T_END + 1e-9  # MARIN's record runs on to 7.38 s
@@ -190,23 +279,21 @@ def spheric_test2(method: str, level: str, threads: int) -> Result:
         errs[k] = float(np.mean(np.abs(hs - data[k][window])))
     r.error = max(errs.values())
     r.particles, r.wall_s = sim.particle_count, time.perf_counter() - t0
-    peak = int(np.argmax(PF))
+    # The first impact at P1-P4 against MARIN's record: reported, not toleranced (the issue asks
+    # for the heights within 3 cm and the pressures reported).
+    exp_p = _spheric_pressures()
+    impact = {k: (_impact_figures(exp_p["t"], exp_p[k]), _impact_figures(TS, PS[k])) for k in SPHERIC_SENSORS}
     r.notes = ("mean absolute height error " + ", ".join(f"{k} {100 * e:.1f} cm" for k, e in errs.items())
-               + f"; front-face pressure peaks at {PF[peak]:.0f} Pa at t = {T[peak]:.2f} s (not compared: "
-               "MARIN's pressure records are not sourced yet)")
-    r.series = {"t_s": T, **{f"{k}_m": H[k] for k in SPHERIC_PROBES}, "p_front_pa": PF}
-    r.extra = {**{f"mae_{k}_m": e for k, e in errs.items()}, "p_front_peak_pa": PF[peak],
-               "p_front_peak_t_s": T[peak]}
+               + "; first impact on the box's front face, MARIN / rtsph: "
+               + "; ".join(f"{k} hit at {e['t_hit']:.3f} / {m['t_hit']:.3f} s, peak {e['peak'] / 1e3:.1f} / "
+                           f"{m['peak'] / 1e3:.1f} kPa, then {e['plateau'] / 1e3:.1f} / {m['plateau'] / 1e3:.1f} kPa"
+                           for k, (e, m) in impact.items())
+               + f" (t = {SPHERIC_PLATEAU[0]:g}-{SPHERIC_PLATEAU[1]:g} s); reported, not compared with a tolerance")
+    r.series = {"t_s": T, **{f"{k}_m": H[k] for k in SPHERIC_PROBES}, "p_front_pa": PF,
+                "t_impact_s": TS, **{f"{k}_pa": PS[k] for k in SPHERIC_SENSORS}}
+    r.extra = {**{f"mae_{k}_m": e for k, e in errs.items()},
+               **{f"{k}_{f}_{who}": v for k, pair in impact.items() for who, fig in zip(("marin", "rtsph"), pair)
+                  for f, v in fig.items()}}
 
-    def plot(ax, res):
-        for i, k in enumerate(SPHERIC_PROBES):
-            off = 0.6 * i
-            line, = ax.plot(res.series["t_s"], np.asarray(res.series[f"{k}_m"]) + off, "-", lw=0.9,
-                            label=f"rtsph {res.method}")
-            w = data["t"] <= SPHERIC_T_END + 1e-9
-            ax.plot(data["t"][w], data[k][w] + off, "k-", lw=0.6, label="MARIN (SPHERIC Test 2)")
-            ax.text(6.05, off + 0.02, k, fontsize=8)
-        ax.set_xlabel("t (s)")
-        ax.set_ylabel("water height (m), probes offset by 0.6 m")
-    r.plot = plot
+    r.plot, r.side_plot = spheric_heights_plot, spheric_pressures_plot
     return _finish(r)

@@ -72,10 +72,11 @@ def _run_task(task: Sequence[Tuple[str, str]], level: str, threads: int, backend
     out = []
     for case, method in task:
         r = run_case(case, method, level, threads, backend)
-        if r.plot is not None:
-            rec = _Recorder()
-            r.plot(rec, r)
-            r.plot = _Replay(rec.calls)
+        for attr in ("plot", "side_plot"):
+            if getattr(r, attr) is not None:
+                rec = _Recorder()
+                getattr(r, attr)(rec, r)
+                setattr(r, attr, _Replay(rec.calls))
         out.append(r)
     return out
 

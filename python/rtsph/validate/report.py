@@ -7,6 +7,7 @@ import csv
 import datetime
 import html
 import io
+import itertools
 import json
 import os
 import platform
@@ -23,20 +24,29 @@ def _plot_case(case: str, results: List[Result]):
 
     ran = [r for r in results if r.applicable and r.plot is not None and r.series]
     conv = [r for r in ran if r.convergence]
-    ncols = 1 + (1 if conv else 0)
+    side = [r for r in ran if r.side_plot is not None]
+    ncols = 1 + (1 if conv else 0) + (1 if side else 0)
     fig, axes = plt.subplots(1, ncols, figsize=(5.2 * ncols, 3.8), squeeze=False)
+
+    def legend(ax):
+        handles, labels = ax.get_legend_handles_labels()
+        seen = {}
+        for h, lab in zip(handles, labels):
+            seen.setdefault(lab, h)
+        if seen:
+            ax.legend(seen.values(), seen.keys(), fontsize=8)
     ax = axes[0][0]
     for r in ran:
         r.plot(ax, r)
-    handles, labels = ax.get_legend_handles_labels()
-    seen = {}
-    for h, lab in zip(handles, labels):
-        seen.setdefault(lab, h)
-    if seen:
-        ax.legend(seen.values(), seen.keys(), fontsize=8)
+    legend(ax)
     ax.set_title(case)
+    if side:
+        axs = axes[0][1]
+        for r in side:
+            r.side_plot(axs, r)
+        legend(axs)
     if conv:
-        ax2 = axes[0][1]
+        ax2 = axes[0][-1]
         for r in conv:
             h = [c[0] for c in r.convergence]
             e = [c[1] for c in r.convergence]
@@ -73,8 +83,10 @@ def write_report(out: str, results: List[Result], level: str, threads: int, wall
             with open(os.path.join(out, f"{r.case}_{r.method}.csv"), "w", newline="") as f:
                 w = csv.writer(f)
                 w.writerow(cols)
-                for row in zip(*(r.series[c] for c in cols)):
-                    w.writerow([repr(float(v)) for v in row])
+                # Series may differ in length (a case sampled more finely over part of its run):
+                # the shorter columns end in blanks.
+                for row in itertools.zip_longest(*(r.series[c] for c in cols)):
+                    w.writerow(["" if v is None else repr(float(v)) for v in row])
     meta = {"date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "level": level, "backend": backend, "threads": threads, "jobs": jobs, "wall_s": wall_s,
             "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),

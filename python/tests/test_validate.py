@@ -264,3 +264,22 @@ def test_csv_columns_of_different_lengths_end_in_blanks(tmp_path):
     report.write_report(str(tmp_path), [r], level="quick", threads=1, wall_s=0.0)
     lines = (tmp_path / "x_wcsph.csv").read_text().splitlines()
     assert lines == ["t_s,fine_t_s", "0.0,0.5", "1.0,", "2.0,"]
+
+
+def test_both_plot_panels_survive_a_worker_process():
+    # --jobs carries a result's panels back from a worker as recorded calls; the side panel
+    # (SPHERIC's pressures) must come back too, and reuse a line's colour as the first does.
+    import pickle
+    from rtsph.validate import parallel, report
+
+    def main(ax, res):
+        line, = ax.plot([0, 1], [0, 1], "-", label=f"rtsph {res.method}")
+        ax.plot([0, 1], [1, 0], "--", color=line.get_color())
+
+    def side(ax, res):
+        ax.plot([0, 1], [2, 3], label="side")
+    r = Result(case="x", method="wcsph", metric="m", series={"t_s": [0.0, 1.0]}, plot=main, side_plot=side)
+    back = pickle.loads(pickle.dumps(parallel._picklable_plots(r)))
+    assert [c[0] for c in back.side_plot.calls] == ["plot"]
+    png = report._plot_case("x", [back])
+    assert png[:8] == b"\x89PNG\r\n\x1a\n"

@@ -68,16 +68,21 @@ class _Replay:
             returned[i] = getattr(ax, name)(*[real(a) for a in args], **{k: real(v) for k, v in kwargs.items()})
 
 
+def _picklable_plots(r: Result) -> Result:
+    """Turns r's plot panels into recorded calls a parent process can replay."""
+    for attr in ("plot", "side_plot"):
+        if getattr(r, attr) is not None:
+            rec = _Recorder()
+            getattr(r, attr)(rec, r)
+            setattr(r, attr, _Replay(rec.calls))
+    return r
+
+
 def _run_task(task: Sequence[Tuple[str, str]], level: str, threads: int, backend: str) -> List[Result]:
     out = []
     for case, method in task:
         r = run_case(case, method, level, threads, backend)
-        for attr in ("plot", "side_plot"):
-            if getattr(r, attr) is not None:
-                rec = _Recorder()
-                getattr(r, attr)(rec, r)
-                setattr(r, attr, _Replay(rec.calls))
-        out.append(r)
+        out.append(_picklable_plots(r))
     return out
 
 

@@ -127,14 +127,19 @@ SPHERIC_LEVELS = {"quick": 0.04, "full": 0.02}  # spacing (m)
 SPHERIC_T_END = 6.0
 
 
-def _spheric_data():
-    path = os.path.join(os.path.dirname(__file__), "data", "spheric_test2_heights.csv")
+def _data_columns(name: str) -> dict:
+    """The columns of data/NAME (CSV after '#' comment lines), by header."""
+    path = os.path.join(os.path.dirname(__file__), "data", name)
     with open(path) as f:
         lines = [ln.strip() for ln in f if ln.strip() and not ln.startswith("#")]
     head = lines[0].split(",")
     vals = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]])
-    return {name: vals[:, head.index(col)] for name, col in
-            (("t", "t_s"), ("H1", "H1_m"), ("H2", "H2_m"), ("H3", "H3_m"), ("H4", "H4_m"))}
+    return {h: vals[:, i] for i, h in enumerate(head)}
+
+
+def _spheric_data():
+    c = _data_columns("spheric_test2_heights.csv")
+    return {"t": c["t_s"], **{k: c[f"{k}_m"] for k in SPHERIC_PROBES}}
 
 
 # MARIN's pressure sensors P1-P4 on the box's front face (x = 0.8245 m; the experiment's z is
@@ -149,12 +154,8 @@ SPHERIC_ARRIVAL_PA = 1000.0       # a sensor is hit when its pressure first pass
 
 
 def _spheric_pressures():
-    path = os.path.join(os.path.dirname(__file__), "data", "spheric_test2_pressures.csv")
-    with open(path) as f:
-        lines = [ln.strip() for ln in f if ln.strip() and not ln.startswith("#")]
-    head = lines[0].split(",")
-    vals = np.array([[float(v) for v in ln.split(",")] for ln in lines[1:]])
-    return {"t": vals[:, head.index("t_s")], **{k: vals[:, head.index(f"{k}_pa")] for k in SPHERIC_SENSORS}}
+    c = _data_columns("spheric_test2_pressures.csv")
+    return {"t": c["t_s"], **{k: c[f"{k}_pa"] for k in SPHERIC_SENSORS}}
 
 
 def _impact_figures(t, p):

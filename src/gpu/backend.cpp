@@ -20,10 +20,6 @@ std::string gpu_cannot_run(const SimSpec& spec) {
   if (!gpu_supports_method(spec.method))
     return fmt::format("scene '{}': solver.method = \"{}\": the GPU backend runs \"wcsph\", \"pbf\" and \"dfsph\"; use --backend cpu",
                        spec.name, spec.method);
-  if (spec.method == "dfsph" && spec.transport_velocity > 0)
-    return fmt::format("scene '{}': solver.transport_velocity = {}: the GPU backend runs the transport velocity with "
-                       "\"wcsph\" only; use --backend cpu",
-                       spec.name, spec.transport_velocity);
   return {};
 }
 

@@ -55,6 +55,7 @@ void GpuDfsph<D>::step() {
     this->bind_all();
     nonpressure_.dispatch(n);          // a_nonp: viscosity, gravity, walls, brush   (line 4)
     this->surface_forces();            // optional: Akinci 2013
+    this->transport_stress_gpu();      // optional: Adami 2013's momentum correction
   }
   const double dt = choose_time_step();  // CFL and the head speed               (line 5)
   {
@@ -68,6 +69,9 @@ void GpuDfsph<D>::step() {
   counters_.density_iterations = solve(true, dt, s.dfsph_max_density_error, "density");  // Alg. 3 (line 7)
   {
     const auto timer = this->stage_timer(this->times_.integrate_s);
+    // optional: Adami 2013, p_b capped at ρ0 (cfl·h/Δt)² as on the CPU (Dfsph::step says why);
+    // kick_drift then moves each particle by Δt(ṽ − v) before its drift.
+    this->transport_velocity_gpu(dt, s.cfl * this->prm_.h / dt);
     this->kick_drift();                            // x += Δt v*, walls, put-back   (line 8)
     this->advance_scene_gpu(this->time_ + dt, dt); // obstacles, emitters
   }

@@ -446,15 +446,16 @@ void GpuWorld<D>::kick_drift() {
   }
 }
 
-// p_b = solver.transport_velocity ρ0 c0² (FluidWorld::transport_velocity_shift, whose signal
-// speed cap only DFSPH sets).
+// p_b = solver.transport_velocity ρ0 c² with c = min(c0, max_signal_speed)
+// (FluidWorld::transport_velocity_shift; only DFSPH caps the speed).
 template <int D>
-void GpuWorld<D>::transport_velocity_gpu(double dt_kick) {
+void GpuWorld<D>::transport_velocity_gpu(double dt_kick, double max_signal_speed) {
   if (!transport() || dt_kick <= 0 || this->fluid_.size() == 0) return;
   tdv_.reserve(capacity_ * sizeof(vec4));
   bind_all();
   tdv_.bind(RTSPH_B_TDV);
-  const double pb = this->spec_.transport_velocity * this->prm_.rho0 * this->prm_.c0 * this->prm_.c0;
+  const double c = std::min(this->prm_.c0, max_signal_speed);
+  const double pb = this->spec_.transport_velocity * this->prm_.rho0 * c * c;
   transport_.set("coeff", Real(pb * dt_kick));
   transport_.dispatch(this->fluid_.size());
 }

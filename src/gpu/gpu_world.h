@@ -9,6 +9,7 @@
 // speed and acceleration for an adaptive time step. Every call needs the OpenGL context that
 // was current when the simulation was made to be current on the calling thread.
 #include <array>
+#include <cmath>
 #include <chrono>
 #include <memory>
 #include <string>
@@ -115,7 +116,8 @@ class GpuWorld : public FluidWorld<D> {
   /// The transport-velocity formulation when solver.transport_velocity > 0 (Adami et al. 2013,
   /// FluidWorld::transport_velocity_shift): ṽ − v from the positions and densities of the last
   /// force stage, before kick_drift(), which then moves each particle by Δt_drift(ṽ − v) first.
-  void transport_velocity_gpu(double dt_kick);
+  /// max_signal_speed caps the speed in p_b = solver.transport_velocity ρ0 c² (DFSPH's, as on the CPU).
+  void transport_velocity_gpu(double dt_kick, double max_signal_speed = HUGE_VAL);
   /// Its momentum correction (FluidWorld::add_transport_velocity_stress), after the force stage.
   void transport_stress_gpu();
   void kick(double dt);                       // v += a dt
@@ -169,7 +171,9 @@ class GpuWorld : public FluidWorld<D> {
   ComputeProgram shift_, shift_apply_;
   ComputeProgram transport_, transport_stress_, kick_drift_transport_;
   Buffer tdv_, tdv_alt_;  // ṽ − v per fluid particle, in the particles' order (sorted with them)
-  bool transport() const { return this->spec_.transport_velocity > 0 && this->spec_.method == "wcsph"; }
+  bool transport() const {
+    return this->spec_.transport_velocity > 0 && (this->spec_.method == "wcsph" || this->spec_.method == "dfsph");
+  }
   Buffer shift_delta_;  // shifting's δx, one vec4 per fluid particle
   static constexpr int kReduceModes = 8;  // reduce.comp's MODEs
   ComputeProgram reduce_[kReduceModes], reduce_final_[kReduceModes];

@@ -172,7 +172,7 @@ const std::vector<ParamInfo>& parameter_table() {
                                            .help = "Transport-velocity formulation (Adami, Hu & Adams 2013): "
                                                    "particles move with v + dt a_b, a_b the push of a uniform "
                                                    "background pressure p_b = this · rho0 c0², which keeps their "
-                                                   "arrangement uniform; 0 = off, 1 = Adami's p_b. WCSPH (both backends) and DFSPH. "
+                                                   "arrangement uniform; 0 = off, 1 = Adami's p_b. WCSPH and DFSPH, both backends. "
                                                    "No free-surface treatment: for confined or periodic flows "
                                                    "(Taylor-Green)."}),
       field<&SimSpec::time_step_mode>({.key = "solver.time_step.mode", .default_text = "cfl",

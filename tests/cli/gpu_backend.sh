@@ -56,20 +56,18 @@ if command -v xvfb-run >/dev/null; then
   check grep -q "20 frames" "$work/v.out"
 fi
 
-# DFSPH runs on the GPU too.
+# DFSPH runs on the GPU too, with the transport velocity as well (in the periodic channel).
 "$bin" run dam_break_2d "${small[@]}" --set solver.method=dfsph --backend gpu --steps 5 --quiet >/dev/null 2>"$work/e"
 check test $? -eq 0
-# Refusals: one line naming the key, exit 2.
-for refused in "solver.method:--set solver.method=gas" \
-               "solver.transport_velocity:--set solver.method=dfsph --set solver.transport_velocity=1"; do
-  key=${refused%%:*}
-  args=${refused#*:}
-  "$bin" run dam_break_2d "${small[@]}" $args --backend gpu --steps 1 2>"$work/e" >/dev/null
-  rc=$?
-  check test $rc -eq 2
-  check test "$(wc -l <"$work/e")" -eq 1
-  check grep -q "$key" "$work/e"
-done
+"$bin" run validate_poiseuille_2d --set solver.method=dfsph --set solver.transport_velocity=1 --backend gpu \
+  --steps 3 --quiet >/dev/null 2>"$work/e"
+check test $? -eq 0
+# Refusal: one line naming the key, exit 2.
+"$bin" run dam_break_2d "${small[@]}" --set solver.method=gas --backend gpu --steps 1 2>"$work/e" >/dev/null
+rc=$?
+check test $rc -eq 2
+check test "$(wc -l <"$work/e")" -eq 1
+check grep -q "solver.method" "$work/e"
 # Periodic axes run on the GPU too (the Poiseuille channel of `rtsph validate`).
 "$bin" run validate_poiseuille_2d --backend gpu --steps 20 --quiet >/dev/null 2>"$work/e"
 check test $? -eq 0

@@ -23,7 +23,7 @@ def _simulation(scene, threads: int) -> "rtsph.Simulation":
     try:
         return rtsph.Simulation(scene, threads=threads, backend=_BACKEND)
     except ValueError as e:
-        # The GPU backend refuses what it does not model yet (DFSPH's transport velocity, ...) with
+        # The GPU backend refuses what it does not model (the gas method: self-gravity) with
         # one line ending "use --backend cpu": not a failure of the physics, so n/a.
         if _BACKEND != "cpu" and "use --backend cpu" in str(e):
             raise NotOnBackend(str(e)) from None

@@ -1,7 +1,6 @@
 // DFSPH after each sort (the CPU's Dfsph::compute_factors; Bender & Koschier 2017): with walls
-// mirroring P_i,
-//   1/alpha_i = (sum_j m grad W_ij + 2 sum_b Psi_b grad W_ib).(sum_j m grad W_ij + sum_b Psi_b grad W_ib)
-//               + sum_j |m grad W_ij|^2                                                      (eq. 8)
+// mirroring P_i and the velocity relative to the wall (src/solvers/dfsph_solve.cpp says why),
+//   1/alpha_i = |sum_j m grad W_ij + 2 sum_b Psi_b grad W_ib|^2 + sum_j |m grad W_ij|^2     (eq. 8)
 // the neighbour count (fluid and boundary, the particle itself included: the divergence solve
 // leaves thin neighbourhoods alone), the walls' gradient sum_b Psi_b grad W_ib and rate
 // sum_b Psi_b v_b.grad W_ib. With with_density, also rho_i = sum_j m W_ij + sum_b Psi_b W_ib
@@ -41,7 +40,7 @@ void main() {
     }
   }
   dvec3 f = dvec3(P.mass * gf), w = dvec3(gb);
-  double denom = dot(f + 2.0lf * w, f + w) + double(P.mass) * double(P.mass) * double(sq);
+  double denom = dot(f + 2.0lf * w, f + 2.0lf * w) + double(P.mass) * double(P.mass) * double(sq);
   factor[i] = vec4(denom > double(tiny) ? float(1.0lf / denom) : 0.0, cnt, rate, 0.0);
   wgrad[i] = vec4(gb, 0.0);
   if (with_density != 0) {

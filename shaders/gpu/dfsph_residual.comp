@@ -1,6 +1,8 @@
 // DFSPH's residual and Jacobi sweep (the CPU's Dfsph::residual; Bender & Koschier 2017,
 // Algorithms 2-3): with the current velocities
-//   D rho_i/Dt = sum_j m (v_i - v_j).grad W_ij + sum_b Psi_b (v_i - v_b).grad W_ib     (eq. 9)
+//   D rho_i/Dt = sum_j m (v_i - v_j).grad W_ij + 2 sum_b Psi_b (v_i - v_b).grad W_ib   (eq. 9)
+// (a wall sample stands for a ghost that mirrors the particle's velocity relative to the wall,
+// as its pressure: the CPU's src/solvers/dfsph_solve.cpp)
 // and the residual r = rho_i + dt D rho_i/Dt - rho0 (density; minus the periodic bias) or
 // r = D rho_i/Dt (divergence), the sweep's pressure P = total + omega r alpha_i / dt^2 (or / dt),
 // projected to P >= 0 when negative pressure is clamped; solve[i].x gets P - total. solve[i].w
@@ -27,7 +29,7 @@ void main() {
     }
   }
   vec4 fac = factor[i];
-  double rate = double(P.mass) * double(rf) - double(fac.z) + double(dot(vi, wgrad[i].xyz));
+  double rate = double(P.mass) * double(rf) + 2.0lf * (double(dot(vi, wgrad[i].xyz)) - double(fac.z));
   double r = density != 0 ? double(dens[i].x) + double(P.dt) * rate - double(P.rho0) - bias : rate;
   bool thin = density == 0 && fac.y < min_neighbours;
   bool clamp = (P.flags & RTSPH_F_CLAMP_NEGATIVE) != 0u;

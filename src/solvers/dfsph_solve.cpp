@@ -1,9 +1,21 @@
 // The two pressure solves of DFSPH (Bender & Koschier 2017), Jacobi sweeps on the velocities.
 //
 // With Pᵢ = κᵢ/ρᵢ the pressure acceleration is aᵢ = −Σⱼ m(Pᵢ + Pⱼ)∇Wᵢⱼ − Σ_b Ψ_b 2Pᵢ∇W_ib
-// (walls mirror the particle, as in WCSPH and PBF), the shared acceleration sum. A velocity
-// change Δvᵢ = Δt aᵢ changes Dρᵢ/Dt by −Δt Pᵢ/αᵢ when the neighbours' P is ignored, with
-//   1/αᵢ = (Σⱼ m∇Wᵢⱼ + 2Σ_b Ψ_b∇W_ib)·(Σⱼ m∇Wᵢⱼ + Σ_b Ψ_b∇W_ib) + Σⱼ |m∇Wᵢⱼ|²      (eq. 8)
+// (walls mirror the particle, as in WCSPH and PBF), the shared acceleration sum. A wall sample
+// stands for a ghost particle that mirrors the particle's pressure and its velocity relative to
+// the wall (the mirror image moves at v_ghost = 2v_b − vᵢ), so its share of the density rate is
+// Σ_b Ψ_b (vᵢ − v_ghost)·∇W_ib = 2Σ_b Ψ_b (vᵢ − v_b)·∇W_ib:
+//   Dρᵢ/Dt = Σⱼ m(vᵢ − vⱼ)·∇Wᵢⱼ + 2Σ_b Ψ_b (vᵢ − v_b)·∇W_ib                             (eq. 9)
+// Then the pressure force is the adjoint of the rate it corrects, and a converged solve does
+// no work on the fluid. With the wall counted once in the rate (as in the density, Σ_b Ψ_b W_ib)
+// the mirrored force did work −Δt Σᵢ m Pᵢ vᵢ·Σ_b Ψ_b∇W_ib each sweep: water at rest gained
+// energy against the floor (2.5 J in 2 s in a 3D tank with a periodic floor at α = 0; now 0.007 J;
+// docs/validation.md) and needed the artificial viscosity to hold it. The density itself keeps
+// the wall once, so the water rests where it did; the density solve's prediction ρᵢ + Δt Dρᵢ/Dt
+// counts a particle's approach to a wall twice, so it is held back a little early, never late.
+// A velocity change Δvᵢ = Δt aᵢ changes Dρᵢ/Dt
+// by −Δt Pᵢ/αᵢ when the neighbours' P is ignored, with
+//   1/αᵢ = |Σⱼ m∇Wᵢⱼ + 2Σ_b Ψ_b∇W_ib|² + Σⱼ |m∇Wᵢⱼ|²                                    (eq. 8)
 // so a residual r gives Pᵢ = r αᵢ / Δt² (density, r = ρ*ᵢ − ρ0) or r αᵢ / Δt (divergence,
 // r = Dρᵢ/Dt): eqs. 9-12 in this notation. Each solve starts from the last step's pressure
 // (warm start, section 4.3) and stops when the mean residual reaches its tolerance.
@@ -155,7 +167,7 @@ void Dfsph<D>::compute_factors(bool with_density) {
         for (int k = 0; k < D; ++k) {
           const double f = double(mass) * simd::hsum(gf[k]), w = simd::hsum(gb[k]);
           wall_grad_[k][i] = Real(w);
-          dot += (f + 2.0 * w) * (f + w);
+          dot += (f + 2.0 * w) * (f + 2.0 * w);
         }
         wall_rate_[i] = simd::hsum(rate);
         const double denom = dot + double(mass) * mass * simd::hsum(sq);
@@ -219,7 +231,7 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
       }
       double wall = -double(wall_rate_[i]);
       for (int k = 0; k < D; ++k) wall += double(vi[k]) * wall_grad_[k][i];
-      const double rate = double(mass) * simd::hsum(rf) + wall;  // Dρᵢ/Dt
+      const double rate = double(mass) * simd::hsum(rf) + 2.0 * wall;  // Dρᵢ/Dt, the ghosts' (eq. 9 above)
       // Density: r = ρ*ᵢ − ρ0 with ρ*ᵢ = ρᵢ + Δt Dρᵢ/Dt; divergence: r = Dρᵢ/Dt.
       double r = density ? fluid_.rho[i] + dt * rate - rho0 - density_bias_ : rate;
       const bool thin = !density && neighbours_[i] < min_neighbours;

@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # Prints a short description of the machine, for CI logs and bug reports: CPU model, SIMD level
-# and core count, Mesa version, /dev/dri nodes, and what EGL finds on each platform (eglinfo,
-# package mesa-utils, installed by scripts/setup.sh). Best effort: never fails, prints "?" for
-# whatever it cannot find out.
+# and core count, free disk, Mesa version, /dev/dri nodes, and what EGL finds on each platform
+# (eglinfo, package mesa-utils, installed by scripts/setup.sh). Best effort: never fails, prints
+# "?" for whatever it cannot find out.
 # Usage: scripts/machine-info.sh [PREFIX]   (each line starts with PREFIX, default "machine: ")
 p=${1-machine: }
 
@@ -12,6 +12,11 @@ echo "${p}CPU ${cpu:-?}; $(nproc 2>/dev/null || echo '?') cores; SIMD ${simd:-?}
 
 mesa=$(dpkg-query -W -f='${Version}' libegl-mesa0 2>/dev/null)
 dri=$(ls /dev/dri 2>/dev/null | tr '\n' ' ')
+# Free disk where the build goes: a link failing with "No space left on device" (the CI run of
+# 2026-11-27, at 787 s) reads from here.
+disk=$(df -h --output=avail,size . 2>/dev/null | tail -1 | awk '{print $1 " free of " $2}')
+echo "${p}disk: ${disk:-?} at $PWD"
+
 echo "${p}Mesa ${mesa:-? (libegl-mesa0 not installed)}; /dev/dri: ${dri:-none}"
 
 if ! command -v eglinfo >/dev/null; then

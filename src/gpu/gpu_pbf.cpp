@@ -5,6 +5,7 @@
 
 #include "core/timer.h"
 #include "gpu/layout.h"
+#include "solvers/pbf.h"
 
 namespace rtsph::gpu {
 
@@ -39,6 +40,7 @@ GpuPbf<D>::GpuPbf(const SimSpec& spec, int threads) : GpuWorld<D>(spec, threads)
   fluid_cap_ = GLuint(std::ceil(1.3 * inside)) + 8;
   boundary_cap_ = GLuint(std::ceil(inside)) * GLuint(std::max(1, spec.boundary_layers));
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes_);
+  stable_weight_ = pbf::stable_weight<D>(this->spec_, this->prm_);
   lattice_gradient_norm_ = this->lattice_gradient_sum() / (this->prm_.rho0 * this->prm_.rho0);
   this->sort_particles();  // the cell ranges (the fluid is already in cell order)
   this->density_only();
@@ -150,7 +152,8 @@ void GpuPbf<D>::solve_density_constraint(double) {
   const std::size_t n = this->fluid_.size();
   lambda_buf_.fill_zero();  // Σλ starts at 0
   lambda_.set("eps", Real(s.pbf_relaxation * lattice_gradient_norm_));
-  lambda_.set("omega_relax", Real(s.clamp_negative_pressure ? 1.0 : kTwoSidedRelax));
+  lambda_.set("omega_relax", Real(s.clamp_negative_pressure ? pbf::jacobi_weight(s, stable_weight_)
+                                                            : kTwoSidedRelax));
   const double dq = s.pbf_scorr_dq * this->prm_.support;
   const float w_dq = with_kernel<D>(s.kernel, this->prm_.h, [&](const auto& K) { return float(K.value(float(dq * dq))); });
   for (const ComputeProgram* prog : {&correct_, &lambda_}) {  // λ: s_corr's share of the pressure

@@ -30,6 +30,7 @@
 #include "core/pair_loop.h"
 #include "core/timer.h"
 #include "solvers/dfsph.h"
+#include "solvers/jacobi.h"
 
 namespace rtsph {
 
@@ -51,57 +52,14 @@ using dfsph::kWarm;
 using simd::f8;
 using simd::i8;
 
-// The relaxation ω for the sweeps, from the rest lattice. On a uniform lattice the sweep's
-// operator (pressure → Δv → Dρ/Dt) is diagonal in Fourier modes P_j = e^{iq·x_j}: it multiplies
-// the mode by m²|S(q)|², S(q) = Σ_k sin(q·x_ik)∇W_ik, while the Jacobi diagonal 1/α is
-// m²Σ_k|∇W_ik|² (Σ_k ∇W_ik = 0 there). A sweep multiplies mode q by 1 − ω|S(q)|²/Σ|∇W|², so
-// Jacobi converges only for ω < 2/λmax, λmax = max_q |S(q)|²/Σ_k|∇W_ik|². The coherent sum grows
-// with the neighbour count: λmax = 2.15 for the cubic spline at h = s in 2D (2.81 in 3D), so
-// IISPH's ω = 0.5 holds there, but 5.67 for Wendland C2 at h = 2s (44 neighbours), where ω = 0.5
-// amplifies that mode 1.8-fold per sweep and a fluid at rest blew up within 8 steps (measured,
-// periodic box, velocity noise ×4 per step). ω = min(0.5, kStableShare · 2/λmax); λmax from a
-// scan of q over [0, π/s]^D.
+// The relaxation ω for the sweeps, from the rest lattice (jacobi_lambda_max: a sweep multiplies
+// mode q by 1 − ω|S(q)|²/Σ|∇W|²). IISPH's ω = 0.5 holds for the cubic spline at h = s (λmax 2.15
+// in 2D, 2.81 in 3D), but Wendland C2 at h = 2s has λmax = 5.67, where ω = 0.5 amplifies the
+// stiffest mode 1.8-fold per sweep and a fluid at rest blew up within 8 steps (measured,
+// periodic box, velocity noise ×4 per step). ω = min(0.5, kStableShare · 2/λmax).
 template <int D>
 double dfsph::jacobi_relaxation(const SimSpec& spec, const ResolvedParams& prm) {
-  const double s = spec.spacing, support2 = prm.support * prm.support;
-  const int reach = int(std::ceil(prm.support / s));
-  std::vector<std::array<double, D>> offsets, grads;
-  double diag = 0;
-  with_kernel<D>(spec.kernel, prm.h, [&](const auto& K) {
-    for (int z = (D == 3 ? -reach : 0); z <= (D == 3 ? reach : 0); ++z)
-      for (int y = -reach; y <= reach; ++y)
-        for (int x = -reach; x <= reach; ++x) {
-          const int c[3] = {x, y, z};
-          double r2 = 0;
-          std::array<double, D> d{};
-          for (int k = 0; k < D; ++k) { d[k] = c[k] * s; r2 += d[k] * d[k]; }
-          if (r2 == 0 || r2 >= support2) continue;
-          const double G = K.grad_factor(float(r2));
-          std::array<double, D> g{};
-          for (int k = 0; k < D; ++k) { g[k] = G * d[k]; diag += g[k] * g[k]; }
-          offsets.push_back(d);
-          grads.push_back(g);
-        }
-  });
-  if (diag <= 0) return kRelax;
-  const int nq = D == 2 ? 64 : 24;
-  double lmax = 0;
-  const int total = D == 2 ? nq * nq : nq * nq * nq;
-  for (int idx = 0; idx < total; ++idx) {
-    double q[D];
-    int rest = idx;
-    for (int k = 0; k < D; ++k) { q[k] = M_PI / s * (rest % nq) / (nq - 1); rest /= nq; }
-    double S[D] = {};
-    for (std::size_t j = 0; j < offsets.size(); ++j) {
-      double phase = 0;
-      for (int k = 0; k < D; ++k) phase += q[k] * offsets[j][k];
-      const double sn = std::sin(phase);
-      for (int k = 0; k < D; ++k) S[k] += sn * grads[j][k];
-    }
-    double s2 = 0;
-    for (int k = 0; k < D; ++k) s2 += S[k] * S[k];
-    lmax = std::max(lmax, s2 / diag);
-  }
+  const double lmax = jacobi_lambda_max<D>(spec, prm);
   return lmax > 0 ? std::min(kRelax, kStableShare * 2.0 / lmax) : kRelax;
 }
 

@@ -17,6 +17,7 @@
 
 #include "core/pair_loop.h"
 #include "core/timer.h"
+#include "solvers/jacobi.h"
 
 namespace rtsph {
 
@@ -30,12 +31,37 @@ namespace {
 // constraint the clamp stops the overshoot, two-sided it grows (measured: a full 2D tank with a
 // moving obstacle diverged in 7 steps at 1, and runs at 0.5, IISPH's and DFSPH's ω).
 constexpr double kTwoSidedRelax = 0.5;
+// The share of the Jacobi stability limit 2/λmax that solver.pbf.omega = 0 uses: the rest
+// lattice's stiffest mode shrinks by |1 − ωλmax| = 0.8 per iteration. DFSPH's 0.75 (ω = 0.53 in
+// 3D, where the mode halves) settled the validation's still-water box no better (rms 0.0082 m/s
+// at 8 s against 0.0081) and slows the smooth modes more.
+constexpr double kStableShare = 0.9;
 }  // namespace
+
+// solver.pbf.omega, the clamped iteration's weight. At Macklin & Müller's full step (1, the
+// default) the iteration multiplies the rest lattice's stiffest mode (neighbours moving against
+// each other) by 1 − λmax: −1.81 in 3D, −1.15 in 2D for the cubic spline at h = s. It grows, and
+// only the one-sided clamp bounds it, in a cycle that flips sign each iteration: a 3D box of
+// still water keeps an rms speed of 0.03 m/s over 10 s (1.9 times the validation's bound), and
+// the 2D tank's kinetic energy flickers with the parity of the iteration count. A weight below
+// 2/λmax damps that mode and the water comes to rest, but it slows the smooth modes that carry
+// a deep column's load: 25-60% more iterations (docs/validation.md, session 21). So the full
+// step stays the default, for real time, and 0 asks for the stable weight. (Switching between
+// the two by the compression, per iteration or per substep, was tried: it cost 3-10%, and the
+// mixed sequences pumped energy into a tank at rest, 0.05-0.13 J against 0.012 J in a 3D tank.)
+template <int D>
+double pbf::stable_weight(const SimSpec& spec, const ResolvedParams& prm) {
+  const double lmax = jacobi_lambda_max<D>(spec, prm);
+  return lmax > 0 ? std::min(1.0, kStableShare * 2.0 / lmax) : 1.0;
+}
+template double pbf::stable_weight<2>(const SimSpec&, const ResolvedParams&);
+template double pbf::stable_weight<3>(const SimSpec&, const ResolvedParams&);
 
 template <int D>
 Pbf<D>::Pbf(const SimSpec& spec, int threads) : W(spec, threads) {
   // Several sums per step over one neighbourhood: walk lists, not the grid.
   this->keep_neighbour_lists();
+  stable_weight_ = pbf::stable_weight<D>(spec_, prm_);
   lattice_gradient_norm_ = this->lattice_gradient_sum() / (prm_.rho0 * prm_.rho0);
   this->compute_density();
   this->measure_density_error();
@@ -149,7 +175,7 @@ double Pbf<D>::compute_lambda() {
   const double inv_rho0 = 1.0 / prm_.rho0, inv_rho02 = inv_rho0 * inv_rho0;
   const double eps = spec_.pbf_relaxation * lattice_gradient_norm_;
   const bool clamp = spec_.clamp_negative_pressure;
-  const double omega = clamp ? 1.0 : kTwoSidedRelax;
+  const double omega = clamp ? pbf::jacobi_weight(spec_, stable_weight_) : kTwoSidedRelax;
   const PairArrays<D> pa = this->pair_arrays();
   [[maybe_unused]] const auto &fx = pa.fx, &fv = pa.fv, &bx = pa.bx, &bv = pa.bv;
   [[maybe_unused]] const Real* const psi = pa.psi;

@@ -6,6 +6,18 @@
 
 namespace rtsph {
 
+namespace pbf {
+/// The stable Jacobi weight for the spec's kernel, h and spacing: min(1, 0.9 · 2/λmax)
+/// (jacobi_lambda_max): the rest lattice's stiffest mode shrinks by 0.8 each iteration. 0.64 in
+/// 3D and 0.84 in 2D for the cubic spline at h = spacing.
+template <int D>
+double stable_weight(const SimSpec& spec, const ResolvedParams& prm);
+/// The weight of a clamped iteration's λ: solver.pbf.omega, or `stable` where that is 0.
+inline double jacobi_weight(const SimSpec& spec, double stable) {
+  return spec.pbf_omega > 0 ? spec.pbf_omega : stable;
+}
+}  // namespace pbf
+
 template <int D>
 class Pbf final : public FluidWorld<D> {
  public:
@@ -29,6 +41,7 @@ class Pbf final : public FluidWorld<D> {
   void add_method_stats(SimStats& s) const override;
   bool sort_after_edit() const override { return false; }  // step(): predict, then sort
 
+  double stable_weight_ = 1;         // pbf::stable_weight, for solver.pbf.omega = 0
   double lattice_gradient_norm_ = 0;  // Σⱼ|∇ⱼCᵢ|² of a particle inside the rest lattice (1/m²)
   AlignedArray<Real> lambda_, lambda_sum_, scorr_share_, rho_next_;
   std::array<AlignedArray<Real>, D> predicted_, delta_;

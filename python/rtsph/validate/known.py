@@ -39,8 +39,6 @@ class Known:
 
 
 _DAM = "the residual column height drains more slowly than Martin & Moyce's Table 6 after τ ≈ 2 (the front passes)"
-_STILL = ("the rms speed at 3 s is over 1% of sqrt(gH): the lattice's rearrangement is still running down "
-          "after the settling time")
 _ST3 = "the 3D calibration drop is 5 spacings in radius at the quick level; the prediction at 2·R is off"
 _OSC = "the drop locks into an ellipse (Akinci's cohesion at h = spacing): no liquid oscillation to time"
 _SPH = "0.04 m (quick) is too coarse for 3 cm at every probe; 0.02 m (full) passes"
@@ -49,7 +47,6 @@ KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
     ("dam_break_2d", "wcsph"): Known(0.1203, _DAM),
     ("dam_break_2d", "pbf"): Known(0.2169, _DAM),
     ("dam_break_2d", "dfsph"): Known(0.1293, _DAM),
-    ("still_water_3d", "pbf"): Known(1.76, _STILL),
     ("static_droplet_2d", "pbf"): Known(1.298, "σ calibrates to 0.37 N/m since PBF's pressure counts s_corr's share "
                                              "(2026-11-26; near zero before, when the figure swung with round-off "
                                              "between 0.29 and 2.31); the jump at R2 (8.4 Pa) exceeds R1's (7.4 Pa), "

@@ -109,6 +109,11 @@ def hydrostatic(dim: int):
 #   floor (session 19).
 STILL_LEVELS = {"quick": (0.025, 3.0, 1.0), "full": (0.02, 10.0, 2.0)}  # spacing (m), t_end, t_settle (s)
 STILL_SHIFTING = {"wcsph": 1.0, "dfsph": 1.0}
+# - PBF at the stable Jacobi weight (solver.pbf.omega = 0, session 21): at its default full step
+#   the clamped iteration cycles the lattice's stiffest mode and the water never comes to rest
+#   (quick 1.76, full 1.93 times the speed bound); the stable weight is PBF's remedy for rest,
+#   as shifting is the others' (PBF has no shifting: it doubled PBF's speed, session 20).
+STILL_PBF = {"pbf": {"omega": 0.0}}
 DRIFT_CELL = 4         # spacings: the cubes the drift is averaged over
 CLUMP_DISTANCE = 0.5   # spacings: the nearest neighbour's least distance
 
@@ -142,7 +147,8 @@ def still_water(method: str, level: str, threads: int) -> Result:
     scene = rtsph.scene({
         "name": "validate_still_water_3d", "dimension": 3,
         "domain": {"min": [0, 0, 0], "max": [0.4, 0.4, 0.4]}, "fluid": {"spacing": s, "hydrostatic_start": True},
-        "solver": {"method": method, **({"shifting": STILL_SHIFTING[method]} if method in STILL_SHIFTING else {})},
+        "solver": {"method": method, **({"shifting": STILL_SHIFTING[method]} if method in STILL_SHIFTING else {}),
+                   **(STILL_PBF if method == "pbf" else {})},
         "fluid_blocks": [{"min": [0, 0, 0], "max": [0.4, 0.24, 0.4]}]})
     sim = _simulation(scene, threads)
     t0 = time.perf_counter()
@@ -177,6 +183,7 @@ def still_water(method: str, level: str, threads: int) -> Result:
                error=max(ratios.values()), tolerance=1.0, particles=sim.particle_count, wall_s=time.perf_counter() - t0,
                setup=(f"0.4 m box, water H = 0.24 m deep, spacing {s} m, {t_end} s at rest, default parameters"
                       + (f" with particle shifting A = {STILL_SHIFTING[method]:g}" if method in STILL_SHIFTING else "")
+                      + (" at the stable Jacobi weight (solver.pbf.omega = 0)" if method == "pbf" else "")
                       + f", hydrostatic start (WCSPH); drift measured from t = {t_settle:g} s"),
                reference="rest: no flow, no drift, no clumping",
                notes=(f"rms speed {v_rms:.3g} m/s (bound {v_bound:.3g}); drift after t = {t_settle:g} s "

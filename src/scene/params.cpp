@@ -240,7 +240,9 @@ const std::vector<ParamInfo>& parameter_table() {
                                           "keeps moving at a few cm/s. 0 = the stable weight "
                                           "from the kernel (0.64 in 3D, 0.84 in 2D for the "
                                           "cubic spline): water comes to rest, at up to 60% "
-                                          "more iterations where it moves.",
+                                          "more iterations where it moves. With "
+                                          "solver.clamp_negative_pressure off the weight is "
+                                          "0.5, whatever this says.",
                                   .live = true}),
       field<&SimSpec::pbf_scorr_k>({.key = "solver.pbf.scorr_k", .min = 0, .max = 10,
                                     .default_value = 0.1,

@@ -98,7 +98,7 @@ struct SimSpec {
   int pbf_max_iterations = 20;     // cap on those
   double pbf_cfl = 1.0;            // substeps shrink so no particle moves more than cfl·spacing
   double pbf_relaxation = 0.01;    // ε, relative to a full neighbourhood's Σ|∇C|²
-  double pbf_omega = 1.0;          // Jacobi weight of λ (clamped constraint); 0 = the stable one
+  double pbf_omega = 1.0;          // Jacobi weight of λ (clamped constraint; 0.5 two-sided); 0 = stable
   double pbf_scorr_k = 0.1;        // artificial pressure s_corr = -k (W(r)/W(Δq))^n
   int pbf_scorr_n = 4;
   double pbf_scorr_dq = 0.2;       // Δq as a fraction of the kernel support

@@ -9,12 +9,14 @@
 
 #include <chrono>
 #include <cmath>
+#include <string>
 #include <vector>
 
 #include "apps/bench.h"
 #include "apps/sim_backend.h"
 #include "io/atomic_file.h"
 #include "scene/realtime_profile.h"
+#include "scene/scene.h"
 #include "solvers/simulation.h"
 
 namespace rtsph::app {
@@ -30,22 +32,26 @@ struct Probe {
 
 // A probe that has fallen three times behind real time stops early: its factor is known to be
 // well below 1, and a large slow probe would otherwise cost minutes.
-Probe probe(const BenchOptions& o, double n, int threads) {
-  auto sim = BackendSimulation::make(dam_break_with(o.dim, n, o.method, o.sets), threads, o.backend);
+Probe probe_spec(const SimSpec& spec, double window_s, int threads, const std::string& backend) {
+  auto sim = BackendSimulation::make(spec, threads, backend);
   Probe p;
   p.fluid = sim->stats().fluid_particles;
   const auto t0 = std::chrono::steady_clock::now();
-  while (sim->time() < o.window_s) {
+  while (sim->time() < window_s) {
     sim->step();
     sim->wait_idle();
     p.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (p.wall_s > 3 * o.window_s) break;
+    if (p.wall_s > 3 * window_s) break;
   }
   p.sim_s = sim->time();
   p.steps = sim->step_count();
   const SimStats st = sim->stats();
   if (st.method == "pbf" || st.method == "dfsph") p.iterations = st.mean_pressure_iterations;
   return p;
+}
+
+Probe probe(const BenchOptions& o, double n, int threads) {
+  return probe_spec(dam_break_with(o.dim, n, o.method, o.sets), o.window_s, threads, o.backend);
 }
 }  // namespace
 
@@ -97,8 +103,8 @@ int bench_realtime(const BenchOptions& o) {
     fmt::print("real-time capacity: none: even the smallest dam break tried runs slower than "
                "real time\n");
   // On the GPU, what the viewer's start-up probe budgets for the same machine (docs/viewer.md,
-  // "Real-time profile"), to set beside the capacity: its own profile (3 to 4 iterations, from
-  // rest, 75% or 60% of a substep's real time), not this search's first simulated second.
+  // "Real-time profile"), to set beside the capacity: its own probes (7 iterations, from rest,
+  // realtime_device_share of a substep's real time), not this search's first simulated second.
   DeviceBudget viewer;
   if (o.backend == "gpu" && o.method == "pbf") {
     viewer = dam_break_device_budget(o.dim, [&](const SimSpec& spec) {
@@ -106,6 +112,16 @@ int bench_realtime(const BenchOptions& o) {
     });
     fmt::print("the viewer's budget on this GPU: {:.0f} fluid particles (probes: {})\n", viewer.particles,
                viewer.describe());
+  }
+  // The viewer's profile at that budget over the same simulated window, without the drawing: the
+  // budget holds if this keeps up, with the share's margin (1/0.4 in 3D) left for drawing.
+  Probe profiled;
+  if (viewer.rate > 0) {
+    const SimSpec dam = load_scene(o.dim == 3 ? "dam_break_3d" : "dam_break_2d");
+    profiled = probe_spec(realtime_profile(dam, 1, viewer.rate, /*device=*/true).spec, o.window_s, threads, "gpu");
+    fmt::print("the viewer's profile at that budget: {} fluid particles, {} substeps in {:.3f} s simulated, "
+               "{:.3f} s wall: real-time factor {:.3f} without drawing, {:.1f} iterations\n",
+               profiled.fluid, profiled.steps, profiled.sim_s, profiled.wall_s, profiled.rtf(), profiled.iterations);
   }
   if (!o.json.empty()) {
     nlohmann::ordered_json j;
@@ -118,6 +134,10 @@ int bench_realtime(const BenchOptions& o) {
     j["capacity_fluid_particles"] = best;
     j["probes"] = rows;
     if (!viewer.probes.empty()) j["viewer_budget_fluid_particles"] = viewer.particles;
+    if (profiled.fluid > 0)
+      j["viewer_profile"] = {{"fluid_particles", profiled.fluid}, {"steps", profiled.steps},
+                             {"sim_s", profiled.sim_s}, {"wall_s", profiled.wall_s},
+                             {"real_time_factor", profiled.rtf()}, {"mean_pressure_iterations", profiled.iterations}};
     io::write_file_atomic(o.json, [&](std::ostream& os) { os << j.dump(2) << "\n"; });
   }
   return 0;

@@ -154,83 +154,164 @@ TEST(RealtimeProfile, KeyReadsFromJsonAndSet) {
   EXPECT_TRUE(parse_scene(scene_to_json(s), "round trip").viewer_realtime);
 }
 
-// A GPU's budget may refine the scene (realtime_profile's `finer`): the smallest spacing whose
-// water fits, never below a quarter of the scene's; without `finer` the scene's spacing is the
-// finest (the CPU's budget).
-TEST(RealtimeProfile, FinerFillsALargerBudget) {
+// The CFL bound's substeps at a scene's head speed (realtime_flow_speed, Ritter's front speed
+// 2·sqrt(|g|H)): the 3D dam break's column is 0.8 m high, solver.pbf.cfl 1.5.
+TEST(RealtimeProfile, FlowSpeedAndSubstepsFollowTheHead) {
+  SimSpec dam = load_scene("dam_break_3d");
+  EXPECT_NEAR(realtime_flow_speed(dam), 2 * std::sqrt(9.81 * 0.8), 1e-9);
+  const double frame = dam.pbf_substeps / dam.pbf_time_step;
+  EXPECT_NEAR(frame, 120, 1e-9);
+  EXPECT_NEAR(realtime_substeps_per_second(dam), 2 * std::sqrt(9.81 * 0.8) / (1.5 * dam.spacing), 1e-9);
+  apply_override(dam, "fluid.spacing=0.05");  // coarse: the frame's substeps rule
+  EXPECT_DOUBLE_EQ(realtime_substeps_per_second(dam), frame);
+  apply_override(dam, "fluid.spacing=0.005");
+  apply_override(dam, "solver.pbf.cfl=0");  // no CFL bound: the frame's
+  EXPECT_DOUBLE_EQ(realtime_substeps_per_second(dam), frame);
+  // Gravity along x: the height is the extent along x, the column's 0.4 m.
+  apply_override(dam, "gravity=[-9.81, 0, 0]");
+  EXPECT_NEAR(realtime_flow_speed(dam), 2 * std::sqrt(9.81 * 0.4), 1e-9);
+  // No gravity and no emitter: nothing moves the water.
+  apply_override(dam, "gravity=[0, 0, 0]");
+  EXPECT_EQ(realtime_flow_speed(dam), 0);
+  // A jet faster than its fall: the jet's speed.
+  SimSpec jet = load_scene("nozzle_obstacle_2d");
+  ASSERT_FALSE(jet.emitters.empty());
+  const double fall = realtime_flow_speed(jet);
+  EXPECT_GE(fall, jet.emitters[0].speed);
+  jet.emitters[0].speed = 10 * fall;
+  EXPECT_DOUBLE_EQ(realtime_flow_speed(jet), 10 * fall);
+}
+
+// A GPU's budget (realtime_profile's `device`) may refine the scene: the smallest spacing whose
+// water fits the rate over the substeps that spacing asks for, never below a quarter of the
+// scene's; without `device` the scene's spacing is the finest (the CPU's budget), and the frame's
+// substeps count.
+TEST(RealtimeProfile, DeviceBudgetFillsWithTheSubstepsItsSpacingAsks) {
   const SimSpec scene = load_scene("dam_break_3d");
   const double written = count_particles(scene).fluid;
-  const double substeps_per_s = scene.pbf_substeps / scene.pbf_time_step;
+  const double frame = scene.pbf_substeps / scene.pbf_time_step;
+  auto substeps = [](const SimSpec& s) { return realtime_substeps_per_second(s); };
   for (double want : {2.0, 10.0}) {
-    const double rate = want * written * substeps_per_s;  // a budget of `want` times the scene
-    const RealtimeProfile p = realtime_profile(scene, 1, rate, /*finer=*/true);
-    EXPECT_NEAR(p.budget, want * written, 1e-6 * want * written);
+    const double rate = want * written * frame;  // `want` times the scene at the frame's substeps
+    const RealtimeProfile p = realtime_profile(scene, 1, rate, /*device=*/true);
     EXPECT_LT(p.spec.spacing, scene.spacing);
-    EXPECT_LE(p.fluid_particles, p.budget);
+    EXPECT_NEAR(p.budget, rate / substeps(p.spec), 1e-9 * rate);
+    EXPECT_LE(p.fluid_particles * substeps(p.spec), rate);
+    // The flow's substeps (more than the frame's at these spacings) leave room for fewer.
+    EXPECT_GT(substeps(p.spec), frame);
+    EXPECT_LT(p.fluid_particles, want * written);
     // Within the lattice's rounding of the budget: a spacing 1% finer no longer fits.
     SimSpec finer = p.spec;
     apply_override(finer, "fluid.spacing=" + std::to_string(0.99 * p.spec.spacing));
-    EXPECT_GT(count_particles(finer).fluid, p.budget) << want;
+    EXPECT_GT(count_particles(finer).fluid * substeps(finer), rate) << want;
     EXPECT_GT(p.fluid_particles, 0.9 * p.budget) << want;
-    EXPECT_EQ(realtime_profile(scene, 1, rate).spec.spacing, scene.spacing);  // not without finer
+    EXPECT_EQ(realtime_profile(scene, 1, rate).spec.spacing, scene.spacing);  // not without device
+    // The scene's iterations, not the CPU profile's 3 to 4.
+    EXPECT_EQ(p.spec.pbf_iterations, scene.pbf_iterations);
+    EXPECT_EQ(p.spec.pbf_max_iterations, scene.pbf_max_iterations);
+    // Without the CFL bound the frame's substeps count: `want` times the scene.
+    SimSpec no_cfl = scene;
+    apply_override(no_cfl, "solver.pbf.cfl=0");
+    const RealtimeProfile q = realtime_profile(no_cfl, 1, rate, true);
+    EXPECT_NEAR(q.budget, want * written, 1e-6 * want * written);
+    EXPECT_LE(q.fluid_particles, q.budget);
+    EXPECT_GT(q.fluid_particles, 0.9 * q.budget);
   }
-  // A budget beyond 4^3 times the scene stops at a quarter of its spacing.
-  const RealtimeProfile huge = realtime_profile(scene, 1, 1000 * written * substeps_per_s, true);
-  EXPECT_DOUBLE_EQ(huge.spec.spacing, kRealtimeFinest * scene.spacing);
-  // A smaller budget still coarsens, as without `finer`.
-  const double half = 0.5 * written * substeps_per_s;
-  EXPECT_EQ(realtime_profile(scene, 1, half, true).spec.spacing, realtime_profile(scene, 1, half).spec.spacing);
+  // A budget beyond what a quarter of the spacing asks stops there.
+  const double finest = kRealtimeFinest * scene.spacing;
+  SimSpec at_finest = scene;
+  apply_override(at_finest, "fluid.spacing=" + std::to_string(finest));
+  const double beyond = 2 * count_particles(at_finest).fluid * substeps(at_finest);
+  EXPECT_DOUBLE_EQ(realtime_profile(scene, 1, beyond, true).spec.spacing, finest);
+  // A smaller budget still coarsens: without the CFL bound as without `device`; with it, further,
+  // as long as the spacing's flow asks for more than the frame's substeps (the 0.025 m this
+  // budget gives the CPU asks for 146 a second).
+  const double half = 0.5 * written * frame;
+  SimSpec no_cfl = scene;
+  apply_override(no_cfl, "solver.pbf.cfl=0");
+  const double cpu = realtime_profile(scene, 1, half).spec.spacing;
+  EXPECT_EQ(realtime_profile(no_cfl, 1, half, true).spec.spacing, cpu);
+  const RealtimeProfile coarser = realtime_profile(scene, 1, half, true);
+  EXPECT_GT(coarser.spec.spacing, cpu);
+  EXPECT_LE(coarser.fluid_particles * substeps(coarser.spec), half);
 }
 
-// particles_in_time: the size a device steps in a given time, from probes of its substep cost.
-TEST(RealtimeProfile, ParticlesInTimeFitsAFixedAndAPerParticleCost) {
-  // t = 1 ms + N / 1e8 s.
+// particles_in_real_time: the size a device keeps in real time, from probes of its substep cost.
+TEST(RealtimeProfile, ParticlesInRealTimeFitsAFixedAndAPerParticleCost) {
+  // t = 1 ms + N / 1e8 s; with one substep a second `share` is the time a substep may take.
   auto t = [](double n) { return 1e-3 + n / 1e8; };
-  EXPECT_NEAR(particles_in_time({{1e4, t(1e4)}, {8e4, t(8e4)}}, 1.5e-3), 5e4, 1e-6);
-  // In any order, and from the two probes nearest the time (a far one, here a slow outlier, is
-  // left out).
-  EXPECT_NEAR(particles_in_time({{8e4, t(8e4)}, {1e3, 5e-3}, {1e4, t(1e4)}}, 1.5e-3), 5e4, 1e-6);
+  auto one = [](double) { return 1.0; };
+  auto in_time = [&](const std::vector<StepProbe>& probes, double seconds) {
+    return particles_in_real_time(probes, seconds, 2, one);
+  };
+  EXPECT_NEAR(in_time({{1e4, t(1e4)}, {8e4, t(8e4)}}, 1.5e-3), 5e4, 1);
+  // In any order; a probe slower than a larger one (here a slow outlier at 1e3) reads as the
+  // larger one's time.
+  EXPECT_NEAR(in_time({{8e4, t(8e4)}, {1e3, 5e-3}, {1e4, t(1e4)}}, 1.5e-3), 5e4, 1);
   // Probes far above the time do not hide a fixed part that is over it (llvmpipe: 10 ms a substep
   // at any size, 6.25 ms allowed).
-  EXPECT_EQ(particles_in_time({{10350, 0.132}, {1320, 0.0202}, {192, 0.0109}}, 6.25e-3), 0);
+  EXPECT_EQ(in_time({{10350, 0.132}, {1320, 0.0202}, {192, 0.0109}}, 6.25e-3), 0);
   // Never more than twice the largest size probed (4 ms would be 3e5 on the line).
-  EXPECT_DOUBLE_EQ(particles_in_time({{1e4, t(1e4)}, {8e4, t(8e4)}}, 4e-3), 1.6e5);
+  EXPECT_DOUBLE_EQ(in_time({{1e4, t(1e4)}, {8e4, t(8e4)}}, 4e-3), 1.6e5);
   // One probe: t ∝ N.
-  EXPECT_NEAR(particles_in_time({{8e4, 1.8e-3}}, 0.9e-3), 4e4, 1e-6);
+  EXPECT_NEAR(in_time({{8e4, 1.8e-3}}, 0.9e-3), 4e4, 1);
   // The fixed part alone over the time: nothing fits. No usable probe: 0.
-  EXPECT_EQ(particles_in_time({{1e4, t(1e4)}, {8e4, t(8e4)}}, 0.5e-3), 0);
-  EXPECT_EQ(particles_in_time({}, 1e-3), 0);
-  EXPECT_EQ(particles_in_time({{1e4, 0}}, 1e-3), 0);
-  // A cost that does not rise with N (noise): t ∝ N through the nearest probe (the smaller, on a tie).
-  EXPECT_NEAR(particles_in_time({{2e4, 2e-3}, {1e4, 2e-3}}, 1e-3), 5e3, 1e-6);
+  EXPECT_EQ(in_time({{1e4, t(1e4)}, {8e4, t(8e4)}}, 0.5e-3), 0);
+  EXPECT_EQ(in_time({}, 1e-3), 0);
+  EXPECT_EQ(in_time({{1e4, 0}}, 1e-3), 0);
+  // A cost that does not rise with N is all fixed part: all or nothing.
+  EXPECT_EQ(in_time({{2e4, 2e-3}, {1e4, 2e-3}}, 1e-3), 0);
+  EXPECT_DOUBLE_EQ(in_time({{2e4, 2e-3}, {1e4, 2e-3}}, 3e-3), 4e4);
+  // Substeps that rise with N (a finer spacing's CFL bound): t(N)·substeps(N) = share. Here
+  // substeps 100 + N/100 a second and 75% of real time: (1e-3 + N/1e8)(100 + N/100) = 0.75.
+  const double n = particles_in_real_time({{1e4, t(1e4)}, {8e4, t(8e4)}}, 0.75, 2,
+                                          [](double n) { return 100 + n / 100; });
+  EXPECT_NEAR(t(n) * (100 + n / 100), 0.75, 1e-6);
+  EXPECT_LT(n, (0.75 / 100 - 1e-3) * 1e8);  // fewer than at a constant 100 a second
 }
 
-// measure_device_budget against a device whose substep costs 1 ms + N / 5e7 s (3D dam break:
-// 120 substeps a second, 75% of 8.33 ms = 6.25 ms allowed, so 262,500 particles): from the CPU
-// reference size it probes upward at most 8 times per step and lands within the 20% it stops at.
+// measure_device_budget against a device whose substep costs 1 ms + N / 5e7 s (3D dam break,
+// 75% of each substep's real time): from the CPU reference size it probes upward at most 8 times
+// per step and lands on the size whose substep takes 75% of 1/substeps-per-second at its spacing.
+// Without the CFL bound that is 75% of 1/120 s = 6.25 ms: 262,500 particles.
 TEST(RealtimeProfile, DeviceBudgetProbesUpToTheSizeThatFits) {
-  const SimSpec scene = load_scene("dam_break_3d");
-  const RealtimeProfile start = realtime_profile(scene, 1);
-  std::vector<double> sizes;
-  const DeviceBudget b = measure_device_budget(start.spec, 0.75, 0.25 * scene.spacing, [&](const SimSpec& s) {
-    const double n = count_particles(s).fluid;
-    sizes.push_back(n);
-    return StepProbe{n, 1e-3 + n / 5e7};
-  });
-  ASSERT_GE(b.probes.size(), 2u);
-  EXPECT_LE(b.probes.size(), 4u);
-  EXPECT_NEAR(sizes.front(), start.fluid_particles, 0.5);  // the first probe is the profile as given
-  for (std::size_t i = 1; i < sizes.size(); ++i) EXPECT_LE(sizes[i], 8.5 * sizes[i - 1]);
-  const double expected = (6.25e-3 - 1e-3) * 5e7;
-  EXPECT_NEAR(b.particles, expected, 0.01 * expected);  // the model is a line: the fit is exact
-  EXPECT_NEAR(b.rate, b.particles * 120, 1e-6 * b.rate);
-  EXPECT_NE(b.describe().find(" particles "), std::string::npos);
-  // A device slower than the time at any size: nothing fits, and it stops probing.
-  const DeviceBudget slow = measure_device_budget(start.spec, 0.75, 0.25 * scene.spacing, [](const SimSpec& s) {
-    const double n = count_particles(s).fluid;
-    return StepProbe{n, 10e-3 + n / 5e7};
-  });
-  EXPECT_EQ(slow.particles, 0);
+  for (bool cfl : {false, true}) {
+    SimSpec scene = load_scene("dam_break_3d");
+    if (!cfl) apply_override(scene, "solver.pbf.cfl=0");
+    const RealtimeProfile start = realtime_profile(scene, 1);
+    std::vector<double> sizes;
+    auto cost = [](double n) { return 1e-3 + n / 5e7; };
+    const DeviceBudget b = measure_device_budget(start.spec, 0.75, 0.25 * scene.spacing, [&](const SimSpec& s) {
+      const double n = count_particles(s).fluid;
+      sizes.push_back(n);
+      return StepProbe{n, cost(n)};
+    });
+    ASSERT_GE(b.probes.size(), 2u);
+    EXPECT_LE(b.probes.size(), 4u);
+    EXPECT_NEAR(sizes.front(), start.fluid_particles, 0.5);  // the first probe is the profile as given
+    for (std::size_t i = 1; i < sizes.size(); ++i) EXPECT_LE(sizes[i], 8.5 * sizes[i - 1]);
+    // The substeps per second at the budget's spacing (N ∝ spacing^-3 from the first probe).
+    SimSpec at = start.spec;
+    at.spacing = start.spec.spacing * std::cbrt(sizes.front() / b.particles);
+    const double substeps = realtime_substeps_per_second(at);
+    if (!cfl) {
+      const double expected = (6.25e-3 - 1e-3) * 5e7;
+      EXPECT_NEAR(b.particles, expected, 0.01 * expected);  // the model is a line: the fit is exact
+      EXPECT_DOUBLE_EQ(substeps, 120);
+    } else {
+      EXPECT_GT(substeps, 120);  // at these sizes the CFL bound asks for more substeps
+      EXPECT_LT(b.particles, 0.5 * (6.25e-3 - 1e-3) * 5e7);
+    }
+    EXPECT_NEAR(cost(b.particles) * substeps, 0.75, 1e-6);
+    EXPECT_NEAR(b.rate, b.particles * substeps, 1e-6 * b.rate);
+    EXPECT_NE(b.describe().find(" particles "), std::string::npos);
+    // A device slower than the time at any size: nothing fits, and it stops probing.
+    const DeviceBudget slow = measure_device_budget(start.spec, 0.75, 0.25 * scene.spacing, [](const SimSpec& s) {
+      const double n = count_particles(s).fluid;
+      return StepProbe{n, 10e-3 + n / 5e7};
+    });
+    EXPECT_EQ(slow.particles, 0);
+  }
 }
 
 }  // namespace

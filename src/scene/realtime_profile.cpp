@@ -31,6 +31,35 @@ double realtime_budget(const SimSpec& pbf_spec, int solver_threads, double rate_
   return rate * std::max(1, solver_threads) / substeps_per_s;
 }
 
+double realtime_flow_speed(const SimSpec& spec) {
+  const double g = norm(spec.gravity);
+  double jet = 0;
+  for (const EmitterSpec& e : spec.emitters) jet = std::max(jet, e.speed);
+  if (!(g > 0)) return jet;
+  const Vec3d up = spec.gravity * (-1.0 / g);
+  // The extremes of a box's corners along `up`.
+  auto along = [&](const Vec3d& lo, const Vec3d& hi, bool top) {
+    double h = 0;
+    for (int d = 0; d < 3; ++d) h += up[d] * ((up[d] > 0) == top ? hi[d] : lo[d]);
+    return h;
+  };
+  double floor = spec.open ? 1e300 : along(spec.domain_min, spec.domain_max, false);
+  double top = -1e300;
+  for (const FluidBlock& b : spec.fluid_blocks) {
+    if (spec.open) floor = std::min(floor, along(b.min, b.max, false));
+    top = std::max(top, along(b.min, b.max, true));
+  }
+  for (const EmitterSpec& e : spec.emitters) top = std::max(top, dot(up, e.position));
+  const double height = top > floor && floor < 1e300 ? top - floor : 0;
+  return std::max(jet, 2 * std::sqrt(g * height));
+}
+
+double realtime_substeps_per_second(const SimSpec& pbf_spec) {
+  const double frame = std::max(1, pbf_spec.pbf_substeps) / pbf_spec.pbf_time_step;
+  if (!(pbf_spec.pbf_cfl > 0) || !(pbf_spec.spacing > 0)) return frame;
+  return std::max(frame, realtime_flow_speed(pbf_spec) / (pbf_spec.pbf_cfl * pbf_spec.spacing));
+}
+
 double median_substep_seconds(Simulation& sim, double wall_s) {
   using clock = std::chrono::steady_clock;
   sim.step();  // the first substep sizes the scratch; not timed
@@ -56,69 +85,90 @@ StepProbe probe_substeps(Simulation& sim, double wall_s) {
 
 namespace {
 
-// particles_in_time without its bound: where the line through the nearest probes reaches the time
-// (0 when nothing fits, or no probe is usable).
-double on_the_line(std::vector<StepProbe> probes, double want) {
+// A substep's time at N particles from the probes: the cost never falls with N, so each probe
+// reads as at most the time of any larger one (a slow outlier at a small size is noise), then
+// the polyline through them, the end segments' lines beyond the ends (a flat one: all fixed
+// cost), t ∝ N from a single probe. Past `largest` times the largest size probed: infinite (the
+// line is not trusted far beyond what was measured).
+double seconds_at(std::vector<StepProbe> probes, double n, double largest) {
   std::erase_if(probes, [](const StepProbe& p) { return !(p.seconds > 0) || !(p.particles > 0); });
-  if (probes.empty() || !(want > 0)) return 0;
-  // The two probes whose times are nearest the one asked about: the line is local.
-  std::sort(probes.begin(), probes.end(), [want](const StepProbe& a, const StepProbe& b) {
-    return std::abs(a.seconds - want) < std::abs(b.seconds - want) ||
-           (std::abs(a.seconds - want) == std::abs(b.seconds - want) && a.particles < b.particles);
-  });
-  const StepProbe& p0 = probes[0];
-  double n = p0.particles * want / p0.seconds;  // t ∝ N through the nearest probe
-  if (probes.size() >= 2 && probes[1].particles != p0.particles) {
-    const StepProbe& p1 = probes[1];
-    const double b = (p1.seconds - p0.seconds) / (p1.particles - p0.particles);
-    if (b > 0) {
-      const double a = p0.seconds - b * p0.particles;
-      n = a >= want ? 0 : (want - a) / b;  // a ≥ want: the fixed part alone is over the time
-    }
-  }
-  return std::max(n, 0.0);
+  if (probes.empty()) return HUGE_VAL;
+  std::sort(probes.begin(), probes.end(),
+            [](const StepProbe& a, const StepProbe& b) { return a.particles < b.particles; });
+  for (std::size_t i = probes.size() - 1; i-- > 0;)
+    probes[i].seconds = std::min(probes[i].seconds, probes[i + 1].seconds);
+  if (n > largest * probes.back().particles) return HUGE_VAL;
+  if (probes.size() == 1) return probes[0].seconds * n / probes[0].particles;
+  std::size_t i = 1;
+  while (i + 1 < probes.size() && probes[i].particles < n) ++i;
+  const StepProbe &a = probes[i - 1], &b = probes[i];
+  if (b.particles == a.particles) return b.seconds;
+  return std::max(0.0, a.seconds + (b.seconds - a.seconds) * (n - a.particles) / (b.particles - a.particles));
 }
 
 }  // namespace
 
-double particles_in_time(std::vector<StepProbe> probes, double seconds_per_substep) {
-  double largest = 0;
+double particles_in_real_time(const std::vector<StepProbe>& probes, double share, double largest,
+                              const std::function<double(double)>& substeps_at) {
+  double top = 0;
   for (const StepProbe& p : probes)
-    if (p.seconds > 0) largest = std::max(largest, p.particles);
-  return std::min(on_the_line(std::move(probes), seconds_per_substep), 2 * largest);
+    if (p.seconds > 0) top = std::max(top, p.particles);
+  auto fits = [&](double n) { return seconds_at(probes, n, largest) * substeps_at(n) <= share; };
+  if (!(top > 0) || !fits(0)) return 0;
+  double lo = 0, hi = largest * top;
+  if (fits(hi)) return hi;
+  for (int i = 0; i < 60 && hi - lo > 1e-6 * hi; ++i) {
+    const double mid = 0.5 * (lo + hi);
+    (fits(mid) ? lo : hi) = mid;
+  }
+  return lo;
 }
 
 DeviceBudget measure_device_budget(const SimSpec& profile, double share, double finest,
                                    const std::function<StepProbe(const SimSpec&)>& probe) {
   DeviceBudget out;
-  const double substeps_per_s = std::max(1, profile.pbf_substeps) / profile.pbf_time_step;
-  const double target = share / substeps_per_s;  // wall seconds a substep may take
+  // Substeps per second at N particles: the spacing from the first probe's (N ∝ spacing^-D); no
+  // particles, an infinite spacing: the frame's.
+  double n0 = 0;
+  auto substeps_at = [&](double n) {
+    SimSpec s = profile;
+    if (!(n > 0) || !(n0 > 0)) s.pbf_cfl = 0;
+    else s.spacing = profile.spacing * std::pow(n0 / n, 1.0 / profile.dimension);
+    return realtime_substeps_per_second(s);
+  };
   double spacing = profile.spacing;
   for (int round = 0; round < 4; ++round) {
     SimSpec s = profile;
     s.spacing = spacing;
     const StepProbe p = probe(s);
     if (!(p.particles > 0) || !(p.seconds > 0)) break;
+    if (n0 == 0) n0 = p.particles;
     const bool again = std::any_of(out.probes.begin(), out.probes.end(),
                                    [&](const StepProbe& q) { return q.particles == p.particles; });
     out.probes.push_back(p);
     if (again) break;  // the lattice's rounding gave a size already probed: nothing new to learn
+    const double target = share / realtime_substeps_per_second(s);  // wall seconds a substep may take
     if (std::abs(p.seconds - target) < 0.2 * target) break;  // close enough: the fit is local
-    // The next size from the line itself (particles_in_time's bound would only double it).
-    const double next = std::clamp(on_the_line(out.probes, target), p.particles / 8, 8 * p.particles);
+    // The next size from the probes' line, up to 8 times this one (the answer's bound, twice the
+    // largest size probed, would only double it).
+    const double next = std::clamp(particles_in_real_time(out.probes, share, 8, substeps_at), p.particles / 8,
+                                   8 * p.particles);
     const double to = std::max(finest, spacing * std::pow(p.particles / next, 1.0 / profile.dimension));
     if (std::abs(to - spacing) < 0.02 * spacing) break;  // the next size would be this one
     spacing = to;
   }
-  out.particles = particles_in_time(out.probes, target);
-  out.rate = out.particles * substeps_per_s;
+  out.particles = particles_in_real_time(out.probes, share, 2, substeps_at);
+  out.rate = out.particles * substeps_at(out.particles);
   return out;
 }
 
 DeviceBudget dam_break_device_budget(int dimension, const std::function<StepProbe(const SimSpec&)>& probe) {
   const SimSpec dam = load_scene(dimension == 3 ? "dam_break_3d" : "dam_break_2d");
-  return measure_device_budget(realtime_profile(dam, 1).spec, realtime_calm_share(dimension),
-                               kRealtimeFinest * dam.spacing, probe);
+  // From the CPU reference size, with the scene's iterations (the device profile keeps them) at
+  // the count they average in the flow: from rest the 1% stop runs to its cap at large sizes.
+  SimSpec start = realtime_profile(dam, 1).spec;
+  start.pbf_iterations = start.pbf_max_iterations = kDeviceProbeIterations;
+  return measure_device_budget(start, realtime_device_share(dimension), kRealtimeFinest * dam.spacing, probe);
 }
 
 std::string DeviceBudget::describe() const {
@@ -138,6 +188,8 @@ double measure_particle_substeps_per_thread(const SimSpec& profile_spec, int thr
 }
 
 double realtime_calm_share(int dimension) { return dimension == 3 ? 0.75 : 0.6; }
+
+double realtime_device_share(int dimension) { return dimension == 3 ? 0.4 : 0.6; }
 
 double calibrated_rate(double measured_per_thread, int dimension) {
   const double reference = realtime_particle_substeps_per_thread(dimension);
@@ -175,7 +227,7 @@ double particles(const SimSpec& s) {
 
 }  // namespace
 
-RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, double rate_per_thread, bool finer) {
+RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, double rate_per_thread, bool device) {
   RealtimeProfile r{scene};
   r.fluid_particles = particles(scene);
   if (!scene.viewer_realtime) return r;
@@ -186,27 +238,43 @@ RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, doubl
   // solver.pbf.max_density_error, at most 4 (Macklin & Müller's range). 3D dam break, 10,695
   // particles, 1 thread, 7.4 s: 4.15 iterations per substep with the defaults (4 to 20), 3.50
   // with these; worst density error 14.0% → 17.7%, mean at the end 0.72% → 0.78%.
-  r.spec.pbf_iterations = std::min(r.spec.pbf_iterations, kRealtimePbfIterations);
-  r.spec.pbf_max_iterations = std::min(r.spec.pbf_max_iterations, kRealtimePbfMaxIterations);
+  // Not on a device, whose sizes are where the cap fails: at 395,352 particles (3 iterations) the
+  // 3D dam break took 2,007 substeps in its first 0.649 s, the 2D one at 54,285 5,740 in 0.072 s,
+  // as the unconverged compression sped the water up (H200, 2026-11-27; docs/performance.md).
+  if (!device) {
+    r.spec.pbf_iterations = std::min(r.spec.pbf_iterations, kRealtimePbfIterations);
+    r.spec.pbf_max_iterations = std::min(r.spec.pbf_max_iterations, kRealtimePbfMaxIterations);
+  }
   if (rate_per_thread > 0) r.rate_source = "given";
   r.rate_per_thread = rate_per_thread > 0 ? rate_per_thread : realtime_particle_substeps_per_thread(scene.dimension);
-  r.budget = realtime_budget(r.spec, solver_threads, r.rate_per_thread);
+  // The particles the rate keeps at a spacing: on a device, over the substeps that spacing's flow
+  // asks for (realtime_substeps_per_second); on the CPU, over the frame's.
+  auto budget_at = [&](double spacing) {
+    if (!device) return realtime_budget(r.spec, solver_threads, r.rate_per_thread);
+    SimSpec s = r.spec;
+    s.spacing = spacing;
+    return r.rate_per_thread * std::max(1, solver_threads) / realtime_substeps_per_second(s);
+  };
   // The count scales as spacing^-D; a few rounds absorb the lattice's rounding at block edges.
   double spacing = scene.spacing;
+  r.budget = budget_at(spacing);
   for (int round = 0; round < 20 && r.fluid_particles > r.budget; ++round) {
     spacing *= std::max(1.01, std::pow(r.fluid_particles / r.budget, 1.0 / scene.dimension));
     r.fluid_particles = particles(at_spacing(r.spec, spacing));
+    r.budget = budget_at(spacing);
   }
   // Finer where the budget holds more: the smallest spacing whose water still fits, by bisection
-  // (the count falls as the spacing grows; lo never fits, hi always does).
-  if (finer && spacing == scene.spacing && r.fluid_particles < r.budget) {
+  // (the count falls as the spacing grows, and the budget does not; lo never fits, hi always does).
+  if (device && spacing == scene.spacing && r.fluid_particles < r.budget) {
+    auto fits = [&](double s) { return particles(at_spacing(r.spec, s)) <= budget_at(s); };
     double lo = kRealtimeFinest * scene.spacing, hi = scene.spacing;
-    if (particles(at_spacing(r.spec, lo)) <= r.budget) hi = lo;
+    if (fits(lo)) hi = lo;
     for (int i = 0; i < 40 && hi > lo && hi - lo > 1e-4 * hi; ++i) {
       const double mid = 0.5 * (lo + hi);
-      (particles(at_spacing(r.spec, mid)) <= r.budget ? hi : lo) = mid;
+      (fits(mid) ? hi : lo) = mid;
     }
     spacing = hi;
+    r.budget = budget_at(spacing);
   }
   if (spacing != scene.spacing) {
     r.spec = at_spacing(r.spec, spacing);

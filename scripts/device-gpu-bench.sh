@@ -10,7 +10,9 @@ set -uo pipefail
 OUT=${OUT:-/tmp/rtsph-out}
 mkdir -p "$OUT"
 LOG=$OUT/gpu-bench.log
-if ! ldconfig -p | grep -q 'libEGL.so.1 '; then  # a bare GPU machine: bring glvnd's loaders
+# (grep reads all of ldconfig's output: with -q it could stop early, and under pipefail the
+# writer's SIGPIPE would read as "not found" and unpack over the machine's own loaders.)
+if ! ldconfig -p | grep 'libEGL.so.1 ' >/dev/null; then  # a bare GPU machine: bring glvnd's loaders
   for f in .device/gl/*.deb; do dpkg -x "$f" /; done
   ldconfig
 fi

@@ -136,7 +136,7 @@ double Viewer::machine_rate(int dimension) {
     std::fprintf(stderr,
                  "rtsph view: this GPU keeps %.0f fluid particles of %s in real time (PBF substeps of %s; "
                  "%.0f%% of each substep's real time; %.1f s): %.3g particle-substeps/s; the real-time profile "
-                 "budgets %.3g (at least a 16th of the CPU reference machine's)\n",
+                 "budgets %.3g (at least a 16th of the CPU reference machine's rate)\n",
                  g.particles, dam.name.c_str(), g.describe().c_str(), 100 * realtime_device_share(dimension), now_s() - t0,
                  g.rate, rate);
     return rate;

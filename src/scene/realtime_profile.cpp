@@ -33,25 +33,30 @@ double realtime_budget(const SimSpec& pbf_spec, int solver_threads, double rate_
 
 double realtime_flow_speed(const SimSpec& spec) {
   const double g = norm(spec.gravity);
-  double jet = 0;
-  for (const EmitterSpec& e : spec.emitters) jet = std::max(jet, e.speed);
-  if (!(g > 0)) return jet;
-  const Vec3d up = spec.gravity * (-1.0 / g);
+  const Vec3d up = g > 0 ? spec.gravity * (-1.0 / g) : Vec3d{};
   // The extremes of a box's corners along `up`.
   auto along = [&](const Vec3d& lo, const Vec3d& hi, bool top) {
     double h = 0;
     for (int d = 0; d < 3; ++d) h += up[d] * ((up[d] > 0) == top ? hi[d] : lo[d]);
     return h;
   };
-  double floor = spec.open ? 1e300 : along(spec.domain_min, spec.domain_max, false);
-  double top = -1e300;
+  // The floor: the container's, unless it is open or periodic along gravity; then the water's own
+  // lowest point (what it falls onto is not known).
+  bool walled = !spec.open;
+  for (int d = 0; d < 3; ++d)
+    if (up[d] != 0 && axis_is_periodic(spec.periodic, d)) walled = false;
+  double floor = walled ? along(spec.domain_min, spec.domain_max, false) : 1e300;
+  if (!walled)
+    for (const FluidBlock& b : spec.fluid_blocks) floor = std::min(floor, along(b.min, b.max, false));
+  auto fall = [&](double height) { return floor < 1e300 && height > floor ? 2 * g * (height - floor) : 0.0; };
+  // A column's front (Ritter), a block's own speed after its fall, a jet's after its fall.
+  double v2 = 0;
   for (const FluidBlock& b : spec.fluid_blocks) {
-    if (spec.open) floor = std::min(floor, along(b.min, b.max, false));
-    top = std::max(top, along(b.min, b.max, true));
+    const double h = along(b.min, b.max, true);
+    v2 = std::max({v2, 2 * fall(h), dot(b.velocity, b.velocity) + fall(h)});
   }
-  for (const EmitterSpec& e : spec.emitters) top = std::max(top, dot(up, e.position));
-  const double height = top > floor && floor < 1e300 ? top - floor : 0;
-  return std::max(jet, 2 * std::sqrt(g * height));
+  for (const EmitterSpec& e : spec.emitters) v2 = std::max(v2, e.speed * e.speed + fall(dot(up, e.position)));
+  return std::sqrt(v2);
 }
 
 double realtime_substeps_per_second(const SimSpec& pbf_spec) {
@@ -85,24 +90,36 @@ StepProbe probe_substeps(Simulation& sim, double wall_s) {
 
 namespace {
 
-// A substep's time at N particles from the probes: the cost never falls with N, so each probe
-// reads as at most the time of any larger one (a slow outlier at a small size is noise), then
-// the polyline through them, the end segments' lines beyond the ends (a flat one: all fixed
-// cost), t ∝ N from a single probe. Past `largest` times the largest size probed: infinite (the
-// line is not trusted far beyond what was measured).
+// A substep's time at N particles from the probes: probes of one size read as their mean; the
+// cost never falls with N, so each probe reads as at most the time of any larger one (a slow
+// outlier at a small size is noise); then the polyline through them, the first segment's line
+// below the smallest, and beyond the largest the last segment's line where it rises, t ∝ N
+// where it does not (a flat end would read as all fixed cost, whatever the size). Past
+// `largest` times the largest size probed: infinite (the line is not trusted far beyond what was
+// measured).
 double seconds_at(std::vector<StepProbe> probes, double n, double largest) {
   std::erase_if(probes, [](const StepProbe& p) { return !(p.seconds > 0) || !(p.particles > 0); });
   if (probes.empty()) return HUGE_VAL;
   std::sort(probes.begin(), probes.end(),
             [](const StepProbe& a, const StepProbe& b) { return a.particles < b.particles; });
+  std::vector<StepProbe> merged;
+  for (std::size_t i = 0; i < probes.size();) {
+    std::size_t j = i;
+    double sum = 0;
+    for (; j < probes.size() && probes[j].particles == probes[i].particles; ++j) sum += probes[j].seconds;
+    merged.push_back({probes[i].particles, sum / double(j - i)});
+    i = j;
+  }
+  probes.swap(merged);
   for (std::size_t i = probes.size() - 1; i-- > 0;)
     probes[i].seconds = std::min(probes[i].seconds, probes[i + 1].seconds);
-  if (n > largest * probes.back().particles) return HUGE_VAL;
-  if (probes.size() == 1) return probes[0].seconds * n / probes[0].particles;
+  const StepProbe& last = probes.back();
+  if (n > largest * last.particles) return HUGE_VAL;
+  if (probes.size() == 1) return last.seconds * n / last.particles;
   std::size_t i = 1;
   while (i + 1 < probes.size() && probes[i].particles < n) ++i;
   const StepProbe &a = probes[i - 1], &b = probes[i];
-  if (b.particles == a.particles) return b.seconds;
+  if (n > b.particles && b.seconds <= a.seconds) return b.seconds * n / b.particles;
   return std::max(0.0, a.seconds + (b.seconds - a.seconds) * (n - a.particles) / (b.particles - a.particles));
 }
 
@@ -255,31 +272,45 @@ RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, doubl
     s.spacing = spacing;
     return r.rate_per_thread * std::max(1, solver_threads) / realtime_substeps_per_second(s);
   };
+  auto fits = [&](double s) { return particles(at_spacing(r.spec, s)) <= budget_at(s); };
+  // The smallest spacing in [lo, hi] whose water fits, by bisection (the count falls as the
+  // spacing grows, and the budget does not; hi fits).
+  auto smallest_fitting = [&](double lo, double hi) {
+    if (fits(lo)) return lo;
+    for (int i = 0; i < 40 && hi - lo > 1e-4 * hi; ++i) {
+      const double mid = 0.5 * (lo + hi);
+      (fits(mid) ? hi : lo) = mid;
+    }
+    return hi;
+  };
   // The count scales as spacing^-D; a few rounds absorb the lattice's rounding at block edges.
-  double spacing = scene.spacing;
+  double spacing = scene.spacing, too_fine = 0;
   r.budget = budget_at(spacing);
   for (int round = 0; round < 20 && r.fluid_particles > r.budget; ++round) {
+    too_fine = spacing;
     spacing *= std::max(1.01, std::pow(r.fluid_particles / r.budget, 1.0 / scene.dimension));
     r.fluid_particles = particles(at_spacing(r.spec, spacing));
     r.budget = budget_at(spacing);
   }
-  // Finer where the budget holds more: the smallest spacing whose water still fits, by bisection
-  // (the count falls as the spacing grows, and the budget does not; lo never fits, hi always does).
-  if (device && spacing == scene.spacing && r.fluid_particles < r.budget) {
-    auto fits = [&](double s) { return particles(at_spacing(r.spec, s)) <= budget_at(s); };
-    double lo = kRealtimeFinest * scene.spacing, hi = scene.spacing;
-    if (fits(lo)) hi = lo;
-    for (int i = 0; i < 40 && hi > lo && hi - lo > 1e-4 * hi; ++i) {
-      const double mid = 0.5 * (lo + hi);
-      (fits(mid) ? hi : lo) = mid;
+  // On a device the budget grows as the spacing coarsens (fewer CFL substeps), so a round above
+  // can overshoot: back to the smallest spacing that fits.
+  if (device && too_fine > 0 && r.fluid_particles <= r.budget) spacing = smallest_fitting(too_fine, spacing);
+  // Finer where the budget holds more: the smallest spacing whose water still fits.
+  if (device && spacing == scene.spacing && r.fluid_particles < r.budget)
+    spacing = smallest_fitting(kRealtimeFinest * scene.spacing, scene.spacing);
+  // Validated like any override. A coarse spacing can break the scene's own checks (an emitter
+  // narrower than a spacing, a block thinner than one): then the spacing steps back toward the
+  // scene's until they pass, over budget (a slow device runs such a scene behind real time).
+  for (int round = 0; spacing != scene.spacing; ++round) {
+    try {
+      r.spec = parse_scene(scene_to_json(at_spacing(r.spec, spacing)), "viewer.realtime");
+      break;
+    } catch (const SceneError&) {
+      if (round == 30) throw;
+      spacing = scene.spacing + 0.9 * (spacing - scene.spacing);
     }
-    spacing = hi;
-    r.budget = budget_at(spacing);
   }
-  if (spacing != scene.spacing) {
-    r.spec = at_spacing(r.spec, spacing);
-    r.spec = parse_scene(scene_to_json(r.spec), "viewer.realtime");  // validated like any override
-  }
+  r.budget = budget_at(spacing);
   r.fluid_particles = particles(r.spec);
   return r;
 }

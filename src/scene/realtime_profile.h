@@ -23,9 +23,12 @@ double realtime_particle_substeps_per_thread(int dimension);
 /// realtime_particle_substeps_per_thread).
 double realtime_budget(const SimSpec& pbf_spec, int solver_threads, double rate_per_thread = 0);
 
-/// The fastest the water of a scene is expected to move, for the CFL bound on PBF's substeps: a
-/// dam break's front speed 2·sqrt(|g|·H) (Ritter's, shallow water), H the height of the water and
-/// of the emitters above the floor along gravity, or the emitters' jet speed where that is more.
+/// The fastest the water of a scene is expected to move, for the CFL bound on PBF's substeps: the
+/// largest of a dam break's front speed 2·sqrt(|g|·H) (Ritter's, shallow water) for each block,
+/// H the height of its top above the floor along gravity; each block's own speed after that fall,
+/// sqrt(|v|² + 2|g|H); and each emitter's jet speed after its fall from the nozzle. The floor is
+/// the container's, or the water's lowest point where the domain is open or periodic along
+/// gravity. Zero with no gravity, no emitter and no block moving.
 double realtime_flow_speed(const SimSpec& spec);
 /// The substeps per second a PBF set-up takes in that flow: its frame's (solver.pbf.substeps over
 /// solver.pbf.time_step), or, where more, what solver.pbf.cfl asks at realtime_flow_speed (no
@@ -101,7 +104,8 @@ double realtime_calm_share(int dimension);
 /// (2026-11-27, docs/performance.md, "Session 22"), 3D dam break, 400 frames at 1280x720, the
 /// budget at shares of 0.75, 0.59, 0.50 and 0.37: 248,820 particles, real-time factor 0.89
 /// (behind 10 times), 208,444 0.93 (7), 181,779 0.98 (2), 144,540 1.00 (never behind, 41 fps).
-/// 2D at 0.6: 34,453 particles, 1.00, never behind, 85 fps.
+/// 0.4 lies between the last two; it was not itself run in the window. 2D at 0.6: 34,453
+/// particles, 1.00, never behind, 85 fps.
 double realtime_device_share(int dimension);
 
 /// PBF's Jacobi iterations per substep in the CPU's profile: at least, and at most

@@ -100,7 +100,8 @@ double calibrated_rate(double measured_per_thread, int dimension);
 double realtime_calm_share(int dimension);
 /// The share of each substep's real time a GPU's budget gives its PBF substeps
 /// (dam_break_device_budget). Lower than the CPU's in 3D: on a GPU the drawing runs on the same
-/// device and thread, after the substeps, not on another core beside them. `rtsph view` on an H200
+/// device and thread, after the substeps, not on another core beside them (the viewer steps for
+/// at most 1/60 s a frame, and at 243k particles a frame's drawing took ~12 ms more). `rtsph view` on an H200
 /// (2026-11-27, docs/performance.md, "Session 22"), 3D dam break, 400 frames at 1280x720, the
 /// budget at shares of 0.75, 0.59, 0.50 and 0.37: 248,820 particles, real-time factor 0.89
 /// (behind 10 times), 208,444 0.93 (7), 181,779 0.98 (2), 144,540 1.00 (never behind, 41 fps).

@@ -8,33 +8,11 @@
 # RTSPH_DEVICE_PROFILE=1 the stage tables and iteration counts behind the figures instead.
 set -uo pipefail
 OUT=${OUT:-/tmp/rtsph-out}
-mkdir -p "$OUT"
 LOG=$OUT/gpu-bench.log
-# (grep reads all of ldconfig's output: with -q it could stop early, and under pipefail the
-# writer's SIGPIPE would read as "not found" and unpack over the machine's own loaders.)
-if ! ldconfig -p | grep 'libEGL.so.1 ' >/dev/null; then  # a bare GPU machine: bring glvnd's loaders
-  for f in .device/gl/*.deb; do dpkg -x "$f" /; done
-  ldconfig
-fi
-mkdir -p /tmp/rtsph
-tar -C /tmp/rtsph -xJf .device/rtsph-device.tar.xz
+. "$(dirname "$0")/device-common.sh"
 export LD_LIBRARY_PATH=/tmp/rtsph/pkg/lib
-R=/tmp/rtsph/pkg/bin/rtsph
-
-step() {  # step LIMIT_S COMMAND...: run it under a time limit, log its output and exit status
-  local limit=$1
-  shift
-  echo "== $(date -u +%T) $* (limit ${limit} s)" | tee -a "$LOG"
-  timeout "$limit" "$@" 2>&1 | tee -a "$LOG"
-  echo "== exit ${PIPESTATUS[0]}" | tee -a "$LOG"
-}
 
 { nvidia-smi --query-gpu=name,driver_version,memory.total --format=csv,noheader; nproc; uname -r; } 2>&1 | tee -a "$LOG"
-# EGL finds the NVIDIA driver through glvnd's vendor file; where the default search misses it,
-# name it (the device tool's README).
-if ! timeout 30 "$R" run dam_break_3d --backend gpu --until 0.001 --quiet >/dev/null 2>&1; then
-  export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-fi
 step 40 "$R" run dam_break_3d --backend gpu --until 0.01
 if [ "${RTSPH_DEVICE_QUICK:-0}" = 1 ]; then
   step 60 "$R" bench --backend gpu --dim 3 --particles 100000 --steps 20

@@ -10,30 +10,11 @@
 # screenshot of the default scene, then times drawing 2M particles. Logs to $OUT/viewer.log.
 set -uo pipefail
 OUT=${OUT:-/tmp/rtsph-out}
-mkdir -p "$OUT"
 LOG=$OUT/viewer.log
-# (grep reads all of ldconfig's output: with -q it could stop early, and under pipefail the
-# writer's SIGPIPE would read as "not found" and unpack over the machine's own loaders.)
-if ! ldconfig -p | grep 'libEGL.so.1 ' >/dev/null; then  # a bare GPU machine: bring glvnd's loaders
-  for f in .device/gl/*.deb; do dpkg -x "$f" /; done
-  ldconfig
-fi
-for f in .device/rtsph-device.tar.xz .device/x.tar.xz; do
-  [ -f "$f" ] || { echo "device-viewer: $f is missing: run scripts/device-pack.sh, then scripts/device-pack-viewer.sh" | tee -a "$LOG"; exit 1; }
-done
-mkdir -p /tmp/rtsph
-tar -C /tmp/rtsph -xJf .device/rtsph-device.tar.xz || exit 1
+. "$(dirname "$0")/device-common.sh"
+[ -f .device/x.tar.xz ] || { echo "device-viewer: .device/x.tar.xz is missing: run scripts/device-pack-viewer.sh after scripts/device-pack.sh" | tee -a "$LOG"; exit 1; }
 tar -C /tmp -xJf .device/x.tar.xz || exit 1
-R=/tmp/rtsph/pkg/bin/rtsph
 X=/tmp/x
-
-step() {  # step LIMIT_S COMMAND...: run it under a time limit, log its output and exit status
-  local limit=$1
-  shift
-  echo "== $(date -u +%T) $* (limit ${limit} s)" | tee -a "$LOG"
-  timeout "$limit" "$@" 2>&1 | tee -a "$LOG"
-  echo "== exit ${PIPESTATUS[0]}" | tee -a "$LOG"
-}
 
 { nvidia-smi --query-gpu=name,driver_version,memory.total,clocks.max.sm --format=csv,noheader; nproc; } 2>&1 | tee -a "$LOG"
 # Xvfb runs xkbcomp and loads swrast_dri.so from the paths Debian built it with.
@@ -50,9 +31,6 @@ step 20 env LD_LIBRARY_PATH=$X/lib __GLX_VENDOR_LIBRARY_NAME=mesa "$X/bin/glxinf
 # $X/lib last: it holds Mesa's GLX client library, without which glvnd found no GLX visual even
 # with the NVIDIA vendor named (H200, 2026-11-27); rtsph's own libraries come first.
 export LD_LIBRARY_PATH=/tmp/rtsph/pkg/lib:$X/client:$X/lib
-if ! timeout 30 "$R" run dam_break_3d --backend gpu --until 0.001 --quiet >/dev/null 2>&1; then
-  export __EGL_VENDOR_LIBRARY_FILENAMES=/usr/local/nvidia/share/glvnd/egl_vendor.d/10_nvidia.json
-fi
 # The viewer's budget on this GPU and how its profile keeps up, headless (pbf_realtime.json).
 step 60 "$R" bench --backend gpu --realtime --method pbf --dim 3 --json "$OUT/pbf_realtime.json"
 printf 'wait 400\nscreenshot %s\nquit\n' "$OUT/view_dam_break_3d.png" >/tmp/shot.txt

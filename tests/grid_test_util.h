@@ -191,6 +191,47 @@ void check_neighbours(const Built<D>& b, std::size_t n, float cell, const std::s
   ::testing::Test::RecordProperty(what + "_pairs", std::to_string(total));
 }
 
+/// The half stencil (for_each_forward_range): every pair within the support is visited exactly
+/// once, from its lower sorted index, and a particle in layer L reaches layers L and L + 1 only
+/// (what FluidWorld's two-phase schedule relies on to write to partners without races).
+template <int D>
+void check_forward(const Built<D>& b, std::size_t n, float cell, const std::string& what) {
+  const float support2 = cell * cell;
+  const auto& g = b.grid;
+  // The layers partition the particles in order.
+  ASSERT_EQ(g.layer_start(0), 0u) << what;
+  ASSERT_EQ(g.layer_start(g.layer_count()), n) << what;
+  std::vector<int> layer(n, -1);
+  for (int l = 0; l < g.layer_count(); ++l) {
+    ASSERT_LE(g.layer_start(l), g.layer_start(l + 1)) << what;
+    for (uint32_t i = g.layer_start(l); i < g.layer_start(l + 1); ++i) layer[i] = l;
+  }
+  std::size_t brute = 0, found = 0;
+  for (std::size_t i = 0; i < n; ++i)
+    for (std::size_t j = i + 1; j < n; ++j)
+      if (dist2<D>(b.ptr, i, j) < support2) ++brute;
+  std::vector<uint32_t> stamp(n, UINT32_MAX);
+  for (std::size_t i = 0; i < n; ++i) {
+    g.for_each_forward_range(g.sorted_cells()[i], uint32_t(i) + 1, [&](uint32_t begin, uint32_t end) {
+      ASSERT_LE(begin, end) << what;
+      ASSERT_LE(end, n) << what;
+      for (uint32_t j = begin; j < end; ++j) {
+        ASSERT_GT(j, i) << what << ": the forward walk of " << i << " reaches back to " << j;
+        ASSERT_TRUE(layer[j] == layer[i] || layer[j] == layer[i] + 1)
+            << what << ": " << i << " in layer " << layer[i] << " reaches layer " << layer[j];
+        if (!(dist2<D>(b.ptr, i, j) < support2)) continue;
+        ASSERT_NE(stamp[j], uint32_t(i)) << what << ": pair " << i << ", " << j << " visited twice";
+        stamp[j] = uint32_t(i);
+        ++found;
+      }
+    });
+    if (::testing::Test::HasFatalFailure()) return;
+  }
+  // Each found pair is a neighbour pair (j > i, within the support, once), so equal counts mean
+  // the forward walk finds them all.
+  EXPECT_EQ(found, brute) << what << ": the forward walk finds " << found << " of " << brute << " pairs";
+}
+
 /// Full check: structure and neighbour sets with 1 thread, and bitwise-equal build with 2.
 template <int D>
 void check_all(const Points<D>& pts, const Vec<D>& lo, const Vec<D>& hi, float cell,
@@ -211,6 +252,7 @@ void check_all(const Points<D>& pts, const Vec<D>& lo, const Vec<D>& hi, float c
   for (std::size_t c = 0; c <= one.grid.cell_count(); ++c)
     ASSERT_EQ(one.grid.cell_start()[c], two.grid.cell_start()[c]) << what << ": 1 vs 2 threads";
   check_neighbours(one, n, cell, what);
+  check_forward(one, n, cell, what);
 }
 
 template <int D>

@@ -12,6 +12,7 @@
 // (wrap_offset), so a pair across the seam is a pair like any other.
 #include <cstdint>
 #include <cstddef>
+#include <algorithm>
 
 #include "core/aligned_array.h"
 #include "core/parallel.h"
@@ -93,6 +94,35 @@ class UniformGrid {
           fn(s[k], s[k + 3]);
         }
     }
+  }
+  /// The forward half of the stencil on a grid without periodic axes, for sums that visit each
+  /// pair once and add to both particles: the rows ahead of the particle's own (+y, then the
+  /// three rows at +z in 3D) whole, and its own row from sorted index `first` on (pass i + 1).
+  /// Every pair of particles within one cell of each other is then visited from exactly one
+  /// of them, and always from the lower sorted index: writes go forward only.
+  template <class Fn>
+  void for_each_forward_range(uint32_t cell, uint32_t first, Fn&& fn) const {
+    const uint32_t* s = start_.data();
+    const uint32_t own = cell - 1;
+    if (s[own + 3] > first) fn(std::max(first, s[own]), s[own + 3]);
+    const uint32_t up = own + uint32_t(dims_[0]);
+    fn(s[up], s[up + 3]);
+    if constexpr (D == 3) {
+      const uint32_t slab = uint32_t(dims_[0]) * uint32_t(dims_[1]);
+      for (int dy = -1; dy <= 1; ++dy) {
+        const uint32_t k = uint32_t(int(own + slab) + dy * dims_[0]);
+        fn(s[k], s[k + 3]);
+      }
+    }
+  }
+  /// Layers of cells across the slowest axis (z in 3D, y in 2D), padding included: layer L
+  /// holds the sorted particles [layer_start(L), layer_start(L + 1)). The forward stencil of a
+  /// particle in layer L reaches layers L and L + 1 only.
+  int layer_count() const { return dims_[D - 1]; }
+  uint32_t layer_start(int layer) const {
+    std::size_t cells_per_layer = 1;
+    for (int a = 0; a < D - 1; ++a) cells_per_layer *= std::size_t(dims_[a]);
+    return start_[std::size_t(layer) * cells_per_layer];
   }
   /// The stencil with wrapping: rows along y/z continue past the seam, and the row along x is
   // one range when it does not cross the seam, else one range per cell.

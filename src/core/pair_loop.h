@@ -59,4 +59,36 @@ template <int D, bool kPeriodic, bool kSkipEmpty = true, class Fn>
     grid.for_each_flat_range(cell, batches);
 }
 
+/// The half-stencil walk (UniformGrid::for_each_forward_range, no periodic axes): particle i's
+/// partners of higher sorted index, eight at a time, as fn(j, d, r2, mask, valid) with `valid`
+/// the lanes inside the range (add_forward writes only those: the lanes past it belong to
+/// other cells, which another thread may be writing).
+template <int D, class Fn>
+[[gnu::always_inline]] inline void for_each_forward_batch(const UniformGrid<D>& grid, uint32_t cell,
+                                                          uint32_t i, const Real* const xs[D],
+                                                          const Real xi[D], Real support2, Fn&& fn) {
+  using simd::f8;
+  using simd::i8;
+  grid.for_each_forward_range(cell, i + 1, [&](uint32_t begin, uint32_t end) {
+    for (uint32_t j = begin; j < end; j += simd::kWidth) {
+      f8 d[D];
+      for (int k = 0; k < D; ++k) d[k] = xi[k] - simd::load(xs[k] + j);
+      f8 r2 = f8{};
+      for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
+      const int valid = int(std::min<uint32_t>(end - j, simd::kWidth));
+      const i8 mask = (simd::lane_index() < valid) & (r2 < support2);
+      if (simd::any(mask)) fn(j, d, r2, mask, valid);
+    }
+  });
+}
+
+/// acc[j + l] += v[l] for the first `valid` lanes (the forward walk's write to its partners).
+[[gnu::always_inline]] inline void add_forward(Real* acc, uint32_t j, simd::f8 v, int valid) {
+  if (valid == simd::kWidth) {
+    simd::store(acc + j, simd::load(acc + j) + v);
+  } else {
+    for (int l = 0; l < valid; ++l) acc[j + uint32_t(l)] += v[l];
+  }
+}
+
 }  // namespace rtsph

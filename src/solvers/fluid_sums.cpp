@@ -2,6 +2,7 @@
 // acceleration sum (pressure, viscosity, external forces). Each fluid particle gathers from its
 // neighbours in a fixed order (cell ranges, then 8-lane batches, then a fixed lane reduction),
 // so results are bitwise identical for any thread count.
+#include <algorithm>
 #include <cmath>
 #include <stdexcept>
 
@@ -50,6 +51,7 @@ void FluidWorld<D>::compute_density() {
   const uint32_t* const cells = pa.cells;
   Real* rho = fluid_.rho.data();
   const Real* const packed = pack_positions();
+  if (half_stencil()) return compute_density_half();
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
@@ -68,6 +70,55 @@ void FluidWorld<D>::compute_density() {
       }
     }, ThreadPool::kPairs);
   });
+}
+
+// The density with each fluid pair visited once (half_stencil()): W is symmetric, so a pair adds
+// its weight to both particles. Same sum as compute_density, in another order.
+template <int D>
+void FluidWorld<D>::compute_density_half() {
+  const std::size_t n = fluid_.size();
+  const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
+  const PairArrays<D> pa = pair_arrays();
+  [[maybe_unused]] const auto &fx = pa.fx, &bx = pa.bx;
+  const Real* const psi = pa.psi;
+  const uint32_t* const cells = pa.cells;
+  Real* rho = fluid_.rho.data();
+  clear_half_accumulators(n);
+  Real* acc = ctx_.half_acc[0].data();
+  with_kernel<D>(spec_.kernel, prm_.h, false, [&](const auto& K) {
+    const Real self = K.value(Real(0));
+    for_each_layer_in_two_phases([&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) {
+        Real xi[D];
+        for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
+        f8 wf{}, wb{};
+        for_each_forward_batch<D>(ctx_.fluid_grid, cells[i], uint32_t(i), fx, xi, support2,
+                                  [&](uint32_t j, const f8*, f8 r2, i8 m, int valid) {
+                                    const f8 w = simd::select(m, K.value(r2), f8{});
+                                    wf += w;
+                                    add_forward(acc, j, w, valid);
+                                  });
+        acc[i] += self + simd::hsum(wf);
+        for_each_candidate_batch<D, false>(ctx_.boundary_grid, cells[i], bx, xi, support2,
+                                           [&](auto j, const f8*, f8 r2, i8 m) {
+                                             wb += simd::select(m, simd::at(psi, j) * K.value(r2), f8{});
+                                           });
+        rho[i] = simd::hsum(wb);  // the walls' share; the fluid's is complete after both phases
+      }
+    });
+  });
+  pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i) rho[i] += mass * acc[i];
+  });
+}
+
+template <int D>
+void FluidWorld<D>::clear_half_accumulators(std::size_t n) {
+  for (int k = 0; k < D; ++k) {
+    ctx_.half_acc[k].resize(n);
+    Real* a = ctx_.half_acc[k].data();
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) { std::fill(a + b, a + e, Real(0)); });
+  }
 }
 
 // aᵢ = −Σⱼ mⱼ (pᵢ/ρᵢ² + pⱼ/ρⱼ² + Πᵢⱼ) ∇Wᵢⱼ                      symmetric pressure (Monaghan 1992)
@@ -120,16 +171,24 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
   const Vec<D> brush_c = truncate<D>(brush.center);
   const Real* const packed = (kPressure || kViscosity) ? pack_positions() : nullptr;
 
+  // Without lists or periodic axes each fluid pair is visited once, from the lower index, and
+  // its term is added to both particles (equal masses, antisymmetric in d); the partners' shares
+  // land in ctx_.half_acc and are added at the end (half_stencil()).
+  const bool half = (kPressure || kViscosity) && half_stencil();
+  if (half) clear_half_accumulators(n);
+  Real* half_acc[D];
+  for (int k = 0; k < D; ++k) half_acc[k] = half ? ctx_.half_acc[k].data() : nullptr;
+
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
-    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) {
+    auto particle = [&](std::size_t i, auto forward) {
         Real xi[D], vi[D];
         for (int k = 0; k < D; ++k) { xi[k] = fx[k][i]; vi[k] = fv[k][i]; }
         const Real rhoi = rho[i], Pi = kPressure ? P[i] : Real(0), iri = kViscosity ? inv_rho[i] : Real(0);
         const Real Pbm = mirror ? Pi : Real(0);
         f8 acc[D] = {};
         if constexpr (kPressure || kViscosity) {
-        this->template for_each_fluid_batch<periodic_v<decltype(K)>>(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
+        // The pair's acceleration of i, c (masked lanes 0); j's is −c.
+        auto pair = [&](auto j, const f8* d, f8 r2, i8 m, f8* c) {
               const f8 G = K.grad_factor(r2);  // ∇W = G · d
               f8 vij[D], vr = f8{};
               for (int k = 0; k < D; ++k) {
@@ -145,8 +204,25 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
                 lam = simd::select(m, mass * nu * (iri + simd::at(inv_rho, j)) * G * r2 * inv, f8{});
               }
               const f8 s = simd::select(m, -mass * pij * G, f8{});
-              for (int k = 0; k < D; ++k) acc[k] += kViscosity ? s * d[k] + lam * vij[k] : s * d[k];
-            }, packed);
+              for (int k = 0; k < D; ++k) c[k] = kViscosity ? s * d[k] + lam * vij[k] : s * d[k];
+        };
+        if constexpr (decltype(forward)::value) {
+          for_each_forward_batch<D>(ctx_.fluid_grid, ctx_.fluid_grid.sorted_cells()[i], uint32_t(i), fx, xi, support2,
+                                    [&](uint32_t j, const f8* d, f8 r2, i8 m, int valid) {
+                                      f8 c[D];
+                                      pair(j, d, r2, m, c);
+                                      for (int k = 0; k < D; ++k) {
+                                        acc[k] += c[k];
+                                        add_forward(half_acc[k], j, -c[k], valid);
+                                      }
+                                    });
+        } else {
+          this->template for_each_fluid_batch<periodic_v<decltype(K)>>(i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
+            f8 c[D];
+            pair(j, d, r2, m, c);
+            for (int k = 0; k < D; ++k) acc[k] += c[k];
+          }, packed);
+        }
         }
         // Boundary neighbours mirror the fluid particle's pressure and density (ρ_b = ρᵢ). The
         // cell comes from the position, not from the last sort: PBF calls this before it sorts,
@@ -207,7 +283,21 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
           }
         }
         for (int k = 0; k < D; ++k) fluid_.a[k][i] = ai[k];
+    };
+    if constexpr (!periodic_v<decltype(K)>) {
+      if (half) {
+        for_each_layer_in_two_phases([&](std::size_t b, std::size_t e) {
+          for (std::size_t i = b; i < e; ++i) particle(i, std::true_type{});
+        });
+        pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+          for (int k = 0; k < D; ++k)
+            for (std::size_t i = b; i < e; ++i) fluid_.a[k][i] += half_acc[k][i];
+        });
+        return;
       }
+    }
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) particle(i, std::false_type{});
     }, ThreadPool::kPairs);
   });
 }

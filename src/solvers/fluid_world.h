@@ -45,12 +45,13 @@ struct StepContext {
   AlignedArray<Real> wall_depth;
   AlignedArray<Real> surface_normal[D];  // Akinci 2013's nᵢ (or the shift δrᵢ), only when on
   AlignedArray<Real> packed_x;     // 3D: positions as (x, y, z, ·) records for one pair sum
+  AlignedArray<Real> half_acc[D];  // half-stencil sums: the partners' shares (FluidWorld::half_stencil)
   AlignedArray<Real> tmp;          // permutation scratch (boundary and method fields)
   typename FluidParticles<D>::Spare spare;  // double buffers for the fluid reorder
   std::size_t bytes() const {
     return fluid_grid.bytes() + boundary_grid.bytes() + p_over_rho2.bytes() + inv_rho.bytes() +
            boundary_p_over_rho2.bytes() + tmp.bytes() + spare.bytes() + fluid_list.bytes() +
-           packed_x.bytes() +
+           packed_x.bytes() + half_acc[0].bytes() * D +
            wall_depth.bytes() * (D + 1) + surface_normal[0].bytes() * D;
   }
 };
@@ -328,6 +329,30 @@ class FluidWorld : public Simulation {
   template <bool kPressure, bool kViscosity, bool kExternal>
   void accelerations_impl(const ForceTerms& terms);
 
+  /// Fluid pair sums visit each pair once when no neighbour lists are kept and no axis is
+  /// periodic (WCSPH's grid walks): half the kernel evaluations (UniformGrid::for_each_forward_range).
+  bool half_stencil() const { return !lists_current() && !ctx_.fluid_grid.any_periodic(); }
+  /// Runs fn(begin, end) on the sorted fluid particles of each layer of grid cells across the
+  /// slowest axis, one layer at a time in order within a call: the even layers in parallel, then
+  /// the odd ones. A particle's forward stencil writes to its own layer and the next only, so no
+  /// two layers of a phase touch the same particle, and what each particle receives arrives in an
+  /// order that no thread count changes (results stay bitwise identical for 1 and N threads).
+  template <class Fn>
+  void for_each_layer_in_two_phases(Fn&& fn) const {
+    const UniformGrid<D>& g = ctx_.fluid_grid;
+    const int layers = g.layer_count();
+    for (int phase = 0; phase < 2; ++phase) {
+      const std::size_t count = std::size_t((layers - phase + 1) / 2);
+      pool_.parallel_for(count, [&](std::size_t b, std::size_t e) {
+        for (std::size_t l = b; l < e; ++l) {
+          const int layer = int(2 * l) + phase;
+          fn(std::size_t(g.layer_start(layer)), std::size_t(g.layer_start(layer + 1)));
+        }
+      }, 1);
+    }
+  }
+  void compute_density_half();
+  void clear_half_accumulators(std::size_t n);
   bool lists_current() const {
     return ctx_.fluid_list.valid() && ctx_.fluid_list.size() == fluid_.size();
   }

@@ -73,7 +73,8 @@ void FluidWorld<D>::compute_density() {
 }
 
 // The density with each fluid pair visited once (half_stencil()): W is symmetric, so a pair adds
-// its weight to both particles. Same sum as compute_density, in another order.
+// its weight to both particles, and ρᵢ, which its partners add to as well, starts at zero. The
+// same sum as compute_density, in another order.
 template <int D>
 void FluidWorld<D>::compute_density_half() {
   const std::size_t n = fluid_.size();
@@ -83,8 +84,7 @@ void FluidWorld<D>::compute_density_half() {
   const Real* const psi = pa.psi;
   const uint32_t* const cells = pa.cells;
   Real* rho = fluid_.rho.data();
-  clear_half_accumulators(n);
-  Real* acc = ctx_.half_acc[0].data();
+  clear(&rho, n, 1);
   with_kernel<D>(spec_.kernel, prm_.h, false, [&](const auto& K) {
     const Real self = K.value(Real(0));
     for_each_layer_in_two_phases([&](std::size_t b, std::size_t e) {
@@ -96,29 +96,23 @@ void FluidWorld<D>::compute_density_half() {
                                   [&](uint32_t j, const f8*, f8 r2, i8 m, int valid) {
                                     const f8 w = simd::select(m, K.value(r2), f8{});
                                     wf += w;
-                                    add_forward(acc, j, w, valid);
+                                    add_forward(rho, j, mass * w, valid);
                                   });
-        acc[i] += self + simd::hsum(wf);
         for_each_candidate_batch<D, false>(ctx_.boundary_grid, cells[i], bx, xi, support2,
                                            [&](auto j, const f8*, f8 r2, i8 m) {
                                              wb += simd::select(m, simd::at(psi, j) * K.value(r2), f8{});
                                            });
-        rho[i] = simd::hsum(wb);  // the walls' share; the fluid's is complete after both phases
+        rho[i] += mass * (self + simd::hsum(wf)) + simd::hsum(wb);
       }
     });
-  });
-  pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-    for (std::size_t i = b; i < e; ++i) rho[i] += mass * acc[i];
   });
 }
 
 template <int D>
-void FluidWorld<D>::clear_half_accumulators(std::size_t n) {
-  for (int k = 0; k < D; ++k) {
-    ctx_.half_acc[k].resize(n);
-    Real* a = ctx_.half_acc[k].data();
-    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) { std::fill(a + b, a + e, Real(0)); });
-  }
+void FluidWorld<D>::clear(Real* const* arrays, std::size_t n, int count) {
+  pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (int k = 0; k < count; ++k) std::fill(arrays[k] + b, arrays[k] + e, Real(0));
+  });
 }
 
 // aᵢ = −Σⱼ mⱼ (pᵢ/ρᵢ² + pⱼ/ρⱼ² + Πᵢⱼ) ∇Wᵢⱼ                      symmetric pressure (Monaghan 1992)
@@ -172,12 +166,12 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
   const Real* const packed = (kPressure || kViscosity) ? pack_positions() : nullptr;
 
   // Without lists or periodic axes each fluid pair is visited once, from the lower index, and
-  // its term is added to both particles (equal masses, antisymmetric in d); the partners' shares
-  // land in ctx_.half_acc and are added at the end (half_stencil()).
+  // its term is added to both particles (equal masses, antisymmetric in d): aᵢ is then a sum
+  // that its partners add to as well, so it starts at zero (half_stencil()).
   const bool half = (kPressure || kViscosity) && half_stencil();
-  if (half) clear_half_accumulators(n);
-  Real* half_acc[D];
-  for (int k = 0; k < D; ++k) half_acc[k] = half ? ctx_.half_acc[k].data() : nullptr;
+  Real* a_out[D];
+  for (int k = 0; k < D; ++k) a_out[k] = fluid_.a[k].data();
+  if (half) clear(a_out, n);
 
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     auto particle = [&](std::size_t i, auto forward) {
@@ -213,7 +207,7 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
                                       pair(j, d, r2, m, c);
                                       for (int k = 0; k < D; ++k) {
                                         acc[k] += c[k];
-                                        add_forward(half_acc[k], j, -c[k], valid);
+                                        add_forward(a_out[k], j, -c[k], valid);
                                       }
                                     });
         } else {
@@ -282,16 +276,17 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
             for (int k = 0; k < D; ++k) ai[k] += f * r[k];
           }
         }
-        for (int k = 0; k < D; ++k) fluid_.a[k][i] = ai[k];
+        for (int k = 0; k < D; ++k) {
+          if constexpr (decltype(forward)::value)
+            a_out[k][i] += ai[k];
+          else
+            a_out[k][i] = ai[k];
+        }
     };
     if constexpr (!periodic_v<decltype(K)>) {
       if (half) {
         for_each_layer_in_two_phases([&](std::size_t b, std::size_t e) {
           for (std::size_t i = b; i < e; ++i) particle(i, std::true_type{});
-        });
-        pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-          for (int k = 0; k < D; ++k)
-            for (std::size_t i = b; i < e; ++i) fluid_.a[k][i] += half_acc[k][i];
         });
         return;
       }

@@ -45,13 +45,12 @@ struct StepContext {
   AlignedArray<Real> wall_depth;
   AlignedArray<Real> surface_normal[D];  // Akinci 2013's nᵢ (or the shift δrᵢ), only when on
   AlignedArray<Real> packed_x;     // 3D: positions as (x, y, z, ·) records for one pair sum
-  AlignedArray<Real> half_acc[D];  // half-stencil sums: the partners' shares (FluidWorld::half_stencil)
   AlignedArray<Real> tmp;          // permutation scratch (boundary and method fields)
   typename FluidParticles<D>::Spare spare;  // double buffers for the fluid reorder
   std::size_t bytes() const {
     return fluid_grid.bytes() + boundary_grid.bytes() + p_over_rho2.bytes() + inv_rho.bytes() +
            boundary_p_over_rho2.bytes() + tmp.bytes() + spare.bytes() + fluid_list.bytes() +
-           packed_x.bytes() + half_acc[0].bytes() * D +
+           packed_x.bytes() +
            wall_depth.bytes() * (D + 1) + surface_normal[0].bytes() * D;
   }
 };
@@ -352,7 +351,8 @@ class FluidWorld : public Simulation {
     }
   }
   void compute_density_half();
-  void clear_half_accumulators(std::size_t n);
+  /// Zeroes arrays[0..count) over [0, n) (the half-stencil sums' starting value).
+  void clear(Real* const* arrays, std::size_t n, int count = D);
   bool lists_current() const {
     return ctx_.fluid_list.valid() && ctx_.fluid_list.size() == fluid_.size();
   }

@@ -204,7 +204,7 @@ double measure_particle_substeps_per_thread(const SimSpec& profile_spec, int thr
   return fluid / median_substep_seconds(*sim, wall_s) / std::max(1, threads);
 }
 
-double realtime_calm_share(int dimension) { return dimension == 3 ? 0.75 : 0.6; }
+double realtime_calm_share(int dimension) { return dimension == 3 ? 0.85 : 0.6; }
 
 double realtime_device_share(int dimension) { return dimension == 3 ? 0.4 : 0.6; }
 

@@ -94,7 +94,10 @@ double measure_particle_substeps_per_thread(const SimSpec& profile_spec, int thr
 /// a scene empty or huge.
 double calibrated_rate(double measured_per_thread, int dimension);
 /// The share above, measured in the viewer (docs/performance.md, "The viewer's budget, measured
-/// on the machine"): 3D 0.74 and 0.78 on the two machines it was measured on. 2D is lower: its
+/// on the machine" and "Session 23"). 3D: 0.85. On the 2-core Intel guest with 1.45-1.49e6
+/// measured, fixed budgets held real time at 0.86 and 0.92 of it (3 runs each, never behind), 0.99
+/// fell behind once or twice (RTF 0.99), 1.06 eighteen times (0.89); session 16 saw 0.76-0.78
+/// hold on the same guest under heavy load, where the measurement moves by a quarter. 2D is lower: its
 /// 2 m column flows fast enough that the CFL bound splits the violent substeps, which a
 /// measurement from rest does not see.
 double realtime_calm_share(int dimension);

@@ -114,6 +114,30 @@ uint64_t bits(double d) {
   return u;
 }
 
+#if defined(__SSE__)
+// Pool loops flush denormals (detail::FlushDenormals), on the caller and on the workers, for
+// parallel_for and parallel_reduce alike, and leave the caller's mode as it was.
+TEST(ParallelFor, DenormalsAreZeroInsideLoopsAndTheModeIsRestored) {
+  volatile float tiny = 1e-40f;  // below FLT_MIN: a denormal
+  ASSERT_GT(tiny * 3.0f, 0.0f);  // outside any loop: kept
+  for (int threads : {1, 2}) {
+    ThreadPool pool(threads);
+    std::vector<float> out(4096, -1.0f);
+    pool.parallel_for(out.size(), [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) out[i] = tiny * 3.0f;
+    }, 1);
+    for (float v : out) ASSERT_EQ(v, 0.0f) << threads << " threads";
+    const double sum = pool.parallel_reduce(out.size(), 0.0, [&](std::size_t b, std::size_t e) {
+      double s = 0;
+      for (std::size_t i = b; i < e; ++i) s += double(tiny * 3.0f);
+      return s;
+    }, 1);
+    EXPECT_EQ(sum, 0.0) << threads << " threads";
+    EXPECT_GT(tiny * 3.0f, 0.0f) << "the caller's mode after the loops";
+  }
+}
+#endif
+
 TEST(ParallelReduce, BitwiseIdenticalForThreadCounts) {
   for (std::size_t n : {0u, 1u, 7u, 63u, 64u, 65u, 1000u, 123457u}) {
     const double s1 = ThreadPool(1).parallel_reduce(n, 0.0, BlockSum(kBlockSum));

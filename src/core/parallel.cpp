@@ -97,6 +97,8 @@ class Workers {
     for (std::size_t b; (b = next_.fetch_add(1, std::memory_order_relaxed)) < blocks_;) call_(ctx_, b);
   }
   void loop(int w) {
+    // A worker runs pool loops only: their floating-point mode for good (detail::FlushDenormals).
+    const FlushDenormals flush;
     // The word before any loop, not a load: the first loop may be published before this thread
     // runs, and it must still take part.
     uint64_t seen = 0;

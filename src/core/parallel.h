@@ -8,11 +8,33 @@
 #include <type_traits>
 #include <vector>
 
+#if defined(__SSE__)
+#include <xmmintrin.h>
+#endif
+
 namespace rtsph {
 
 namespace detail {
 class Workers;
-}
+
+/// Flush-to-zero and denormals-are-zero for the scope (x86's MXCSR; nothing elsewhere), the
+/// caller's mode restored after. Every pool loop runs under it, on the caller and on the workers,
+/// so a result never depends on the thread or the entry point (CLI, Python, tests) that ran it.
+/// Values below 1.2e-38 are noise in every sum here (kernel tails, s_corr's fourth powers), and
+/// on Intel each operation that makes or reads one takes a microcode assist: measured 2.5-4% of
+/// a PBF step and 6% of a WCSPH step (docs/performance.md, "Session 23").
+class FlushDenormals {
+ public:
+#if defined(__SSE__)
+  FlushDenormals() : saved_(_mm_getcsr()) { _mm_setcsr(saved_ | kFlags); }
+  ~FlushDenormals() { _mm_setcsr(saved_); }
+  static constexpr unsigned kFlags = 0x8040;  // FTZ (bit 15) | DAZ (bit 6)
+
+ private:
+  unsigned saved_;
+#endif
+};
+}  // namespace detail
 
 /// Owns threads-1 worker threads (the caller is the last one), started with the pool and joined
 /// when it is destroyed, so two simulations never share workers.
@@ -69,6 +91,7 @@ void run_blocks(Workers* workers, int threads, std::size_t blocks, void* ctx,
 template <class Fn>
 void ThreadPool::parallel_for(std::size_t n, Fn&& fn, std::size_t grain) const {
   if (n == 0) return;
+  const detail::FlushDenormals flush;
   const int threads = threads_for(n, grain);
   if (threads <= 1) return fn(std::size_t(0), n);
   // A few blocks per thread balances uneven neighbour counts; the split never changes results.
@@ -88,6 +111,7 @@ T ThreadPool::parallel_reduce(std::size_t n, T zero, Fn&& fn, std::size_t grain)
   for (auto& p : partial) p = zero;
   const std::size_t blocks = std::min<std::size_t>(kBlocks, n);
   if (blocks == 0) return zero;
+  const detail::FlushDenormals flush;
   struct Ctx { std::remove_reference_t<Fn>* fn; T* out; std::size_t n, blocks; } ctx{&fn, partial, n, blocks};
   detail::run_blocks(workers_.get(), threads_for(n, grain), blocks, &ctx, [](void* p, std::size_t b) {
     auto& c = *static_cast<Ctx*>(p);

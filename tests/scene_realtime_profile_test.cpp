@@ -62,6 +62,31 @@ TEST(RealtimeProfile, EmittersCountAndKeepTheirVolume) {
 
 // The budget is a rate: a scene that takes twice the substeps per second gets half the
 // particles (the 3D dam break sets 2 per frame, the double dam break keeps the default 4).
+// On the CPU a jet's CFL substeps count (a collapse's front does not: the calm share absorbs
+// that transient). The nozzle's 2.5 m/s jet falls 0.9 m: sqrt(2.5² + 2g·0.9) = 4.89 m/s, so at
+// the profile's spacing s it asks 4.89/s substeps a second, more than the frame's 240, and the
+// budget is the rate over those; the dam break keeps the frame's.
+TEST(RealtimeProfile, CpuBudgetCountsAJetsSubsteps) {
+  const SimSpec scene = load_scene("nozzle_obstacle_2d");
+  const double rate = 1.92e6;  // particle-substeps/s per thread (the 2D cap on this machine kind)
+  const RealtimeProfile p = realtime_profile(scene, 1, rate);
+  const double jet = std::sqrt(2.5 * 2.5 + 2 * 9.81 * 0.9);
+  EXPECT_NEAR(realtime_flow_speed(p.spec), jet, 1e-3);
+  const double substeps = jet / (p.spec.pbf_cfl * p.spec.spacing);
+  ASSERT_GT(substeps, 1.5 * p.spec.pbf_substeps / p.spec.pbf_time_step);
+  EXPECT_NEAR(p.budget, rate / substeps, 1e-6 * p.budget);
+  const auto counts = count_particles(p.spec);
+  EXPECT_LE(counts.fluid + counts.emitted_max, p.budget);
+  EXPECT_GT(counts.fluid + counts.emitted_max, 0.9 * p.budget);  // as fine as the budget allows
+  // Over the frame's substeps the same rate would keep the scene as written (8,000 at 0.01 m).
+  EXPECT_GE(realtime_budget(scene, 1, rate), 8000.0);
+  EXPECT_LT(p.fluid_particles, 0.7 * 8000.0);
+  // A dam break (no emitter) is budgeted over the frame's substeps, whatever its front's speed.
+  const SimSpec dam = load_scene("dam_break_3d");
+  const RealtimeProfile d = realtime_profile(dam, 1, 1.26e6);
+  EXPECT_DOUBLE_EQ(d.budget, realtime_budget(d.spec, 1, 1.26e6));
+}
+
 TEST(RealtimeProfile, MoreSubstepsGetFewerParticles) {
   const SimSpec two = load_scene("dam_break_3d"), four = load_scene("double_dam_break_3d");
   ASSERT_EQ(two.pbf_substeps, 2);

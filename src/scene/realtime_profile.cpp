@@ -265,11 +265,20 @@ RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, doubl
   if (rate_per_thread > 0) r.rate_source = "given";
   r.rate_per_thread = rate_per_thread > 0 ? rate_per_thread : realtime_particle_substeps_per_thread(scene.dimension);
   // The particles the rate keeps at a spacing: on a device, over the substeps that spacing's flow
-  // asks for (realtime_substeps_per_second); on the CPU, over the frame's.
+  // asks for (realtime_substeps_per_second); on the CPU, over the frame's, or over what its
+  // emitters' jets ask where that is more. A jet runs at its speed for as long as it flows, where
+  // a collapse's front is a transient that the CPU's share of the measured rate absorbs (the 3D
+  // dam break took 130 substeps in its first second against the frame's 120). The nozzle scenes'
+  // 2.5 m/s jet, falling 0.9 m, needs 490 a second at 0.01 m, and took 800 headless (splashes off
+  // the circle): budgeted at the frame's 240 the viewer ran them at a real-time factor of
+  // 0.80-0.95, once 0.34 (docs/performance.md, "Session 23").
+  const bool jets = !r.spec.emitters.empty();
+  const bool cfl_budget = device || jets;
   auto budget_at = [&](double spacing) {
-    if (!device) return realtime_budget(r.spec, solver_threads, r.rate_per_thread);
+    if (!cfl_budget) return realtime_budget(r.spec, solver_threads, r.rate_per_thread);
     SimSpec s = r.spec;
     s.spacing = spacing;
+    if (!device) s.fluid_blocks.clear();  // the jets' speed alone, as above
     return r.rate_per_thread * std::max(1, solver_threads) / realtime_substeps_per_second(s);
   };
   auto fits = [&](double s) { return particles(at_spacing(r.spec, s)) <= budget_at(s); };
@@ -292,9 +301,9 @@ RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, doubl
     r.fluid_particles = particles(at_spacing(r.spec, spacing));
     r.budget = budget_at(spacing);
   }
-  // On a device the budget grows as the spacing coarsens (fewer CFL substeps), so a round above
-  // can overshoot: back to the smallest spacing that fits.
-  if (device && too_fine > 0 && r.fluid_particles <= r.budget) spacing = smallest_fitting(too_fine, spacing);
+  // Where the budget counts CFL substeps it grows as the spacing coarsens, so a round above can
+  // overshoot: back to the smallest spacing that fits.
+  if (cfl_budget && too_fine > 0 && r.fluid_particles <= r.budget) spacing = smallest_fitting(too_fine, spacing);
   // Finer where the budget holds more: the smallest spacing whose water still fits.
   if (device && spacing == scene.spacing && r.fluid_particles < r.budget)
     spacing = smallest_fitting(kRealtimeFinest * scene.spacing, scene.spacing);

@@ -21,8 +21,8 @@ class Workers;
 /// caller's mode restored after. Every pool loop runs under it, on the caller and on the workers,
 /// so a result never depends on the thread or the entry point (CLI, Python, tests) that ran it.
 /// Values below 1.2e-38 are noise in every sum here (kernel tails, s_corr's fourth powers), and
-/// on Intel each operation that makes or reads one takes a microcode assist: measured 2.5-4% of
-/// a PBF step and 6% of a WCSPH step (docs/performance.md, "Session 23").
+/// on Intel each operation that makes or reads one takes a microcode assist: about 3% of a PBF
+/// and of a WCSPH step (medians of five alternating runs, docs/performance.md, "Session 23").
 class FlushDenormals {
  public:
 #if defined(__SSE__)

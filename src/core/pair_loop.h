@@ -4,6 +4,7 @@
 // d[k] = x_i - x_j, the squared distances, and a mask of lanes that are in range and inside the
 // kernel support. Lanes past a range end read the array's padding and are masked off. Along
 // periodic axes d is the minimum image.
+#include <algorithm>
 #include <type_traits>
 
 #include "core/grid.h"
@@ -33,25 +34,37 @@ decltype(auto) with_kernel(KernelType type, double h, bool periodic, Fn&& fn) {
   });
 }
 
+namespace detail {
+// One contiguous range [begin, end) of candidates, eight at a time: fn(j, d, r2, mask, valid),
+// `valid` the lanes inside the range (the lanes past it read the next cells or the padding).
+template <int D, bool kPeriodic, bool kSkipEmpty, class Fn>
+[[gnu::always_inline]] inline void range_batches(const UniformGrid<D>& grid, const Real* const xs[D],
+                                                 const Real xi[D], Real support2, uint32_t begin,
+                                                 uint32_t end, Fn&& fn) {
+  using simd::f8;
+  using simd::i8;
+  for (uint32_t j = begin; j < end; j += simd::kWidth) {
+    f8 d[D];
+    for (int k = 0; k < D; ++k) d[k] = xi[k] - simd::load(xs[k] + j);
+    if constexpr (kPeriodic) grid.wrap_offsets(d);  // minimum image across a seam
+    f8 r2 = f8{};
+    for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
+    const int valid = int(std::min<uint32_t>(end - j, simd::kWidth));
+    const i8 mask = (simd::lane_index() < valid) & (r2 < support2);
+    if (!kSkipEmpty || simd::any(mask)) fn(j, d, r2, mask, valid);
+  }
+}
+}  // namespace detail
+
 // Forced inlining keeps the caller's accumulators in registers across batches. kSkipEmpty
 // skips batches with no lane in range (worth its mispredicted branch when fn is heavy).
 template <int D, bool kPeriodic, bool kSkipEmpty = true, class Fn>
 [[gnu::always_inline]] inline void for_each_candidate_batch(const UniformGrid<D>& grid, uint32_t cell,
                                      const Real* const xs[D], const Real xi[D], Real support2,
                                      Fn&& fn) {
-  using simd::f8;
-  using simd::i8;
   auto batches = [&](uint32_t begin, uint32_t end) {
-    for (uint32_t j = begin; j < end; j += simd::kWidth) {
-      f8 d[D];
-      for (int k = 0; k < D; ++k) d[k] = xi[k] - simd::load(xs[k] + j);
-      if constexpr (kPeriodic) grid.wrap_offsets(d);  // minimum image across a seam
-      f8 r2 = f8{};
-      for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
-      const i8 in_range = simd::lane_index() < int(end - j);
-      const i8 mask = in_range & (r2 < support2);
-      if (!kSkipEmpty || simd::any(mask)) fn(j, d, r2, mask);
-    }
+    detail::range_batches<D, kPeriodic, kSkipEmpty>(grid, xs, xi, support2, begin, end,
+        [&](uint32_t j, const simd::f8* d, simd::f8 r2, simd::i8 mask, int) { fn(j, d, r2, mask); });
   };
   if constexpr (kPeriodic)
     grid.for_each_periodic_range(cell, batches);
@@ -67,18 +80,8 @@ template <int D, class Fn>
 [[gnu::always_inline]] inline void for_each_forward_batch(const UniformGrid<D>& grid, uint32_t cell,
                                                           uint32_t i, const Real* const xs[D],
                                                           const Real xi[D], Real support2, Fn&& fn) {
-  using simd::f8;
-  using simd::i8;
   grid.for_each_forward_range(cell, i + 1, [&](uint32_t begin, uint32_t end) {
-    for (uint32_t j = begin; j < end; j += simd::kWidth) {
-      f8 d[D];
-      for (int k = 0; k < D; ++k) d[k] = xi[k] - simd::load(xs[k] + j);
-      f8 r2 = f8{};
-      for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
-      const int valid = int(std::min<uint32_t>(end - j, simd::kWidth));
-      const i8 mask = (simd::lane_index() < valid) & (r2 < support2);
-      if (simd::any(mask)) fn(j, d, r2, mask, valid);
-    }
+    detail::range_batches<D, false, true>(grid, xs, xi, support2, begin, end, fn);
   });
 }
 

@@ -31,7 +31,7 @@ double realtime_budget(const SimSpec& pbf_spec, int solver_threads, double rate_
   return rate * std::max(1, solver_threads) / substeps_per_s;
 }
 
-double realtime_flow_speed(const SimSpec& spec) {
+double realtime_flow_speed(const SimSpec& spec, bool jets_only) {
   const double g = norm(spec.gravity);
   const Vec3d up = g > 0 ? spec.gravity * (-1.0 / g) : Vec3d{};
   // The extremes of a box's corners along `up`.
@@ -52,6 +52,7 @@ double realtime_flow_speed(const SimSpec& spec) {
   // A column's front (Ritter), a block's own speed after its fall, a jet's after its fall.
   double v2 = 0;
   for (const FluidBlock& b : spec.fluid_blocks) {
+    if (jets_only) break;
     const double h = along(b.min, b.max, true);
     v2 = std::max({v2, 2 * fall(h), dot(b.velocity, b.velocity) + fall(h)});
   }
@@ -59,10 +60,10 @@ double realtime_flow_speed(const SimSpec& spec) {
   return std::sqrt(v2);
 }
 
-double realtime_substeps_per_second(const SimSpec& pbf_spec) {
+double realtime_substeps_per_second(const SimSpec& pbf_spec, bool jets_only) {
   const double frame = std::max(1, pbf_spec.pbf_substeps) / pbf_spec.pbf_time_step;
   if (!(pbf_spec.pbf_cfl > 0) || !(pbf_spec.spacing > 0)) return frame;
-  return std::max(frame, realtime_flow_speed(pbf_spec) / (pbf_spec.pbf_cfl * pbf_spec.spacing));
+  return std::max(frame, realtime_flow_speed(pbf_spec, jets_only) / (pbf_spec.pbf_cfl * pbf_spec.spacing));
 }
 
 double median_substep_seconds(Simulation& sim, double wall_s) {
@@ -272,14 +273,12 @@ RealtimeProfile realtime_profile(const SimSpec& scene, int solver_threads, doubl
   // 2.5 m/s jet, falling 0.9 m, needs 490 a second at 0.01 m, and took 800 headless (splashes off
   // the circle): budgeted at the frame's 240 the viewer ran them at a real-time factor of
   // 0.80-0.95, once 0.34 (docs/performance.md, "Session 23").
-  const bool jets = !r.spec.emitters.empty();
-  const bool cfl_budget = device || jets;
+  const bool cfl_budget = device || !r.spec.emitters.empty();
   auto budget_at = [&](double spacing) {
     if (!cfl_budget) return realtime_budget(r.spec, solver_threads, r.rate_per_thread);
     SimSpec s = r.spec;
     s.spacing = spacing;
-    if (!device) s.fluid_blocks.clear();  // the jets' speed alone, as above
-    return r.rate_per_thread * std::max(1, solver_threads) / realtime_substeps_per_second(s);
+    return r.rate_per_thread * std::max(1, solver_threads) / realtime_substeps_per_second(s, /*jets_only=*/!device);
   };
   auto fits = [&](double s) { return particles(at_spacing(r.spec, s)) <= budget_at(s); };
   // The smallest spacing in [lo, hi] whose water fits, by bisection (the count falls as the

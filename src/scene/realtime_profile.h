@@ -28,13 +28,14 @@ double realtime_budget(const SimSpec& pbf_spec, int solver_threads, double rate_
 /// H the height of its top above the floor along gravity; each block's own speed after that fall,
 /// sqrt(|v|² + 2|g|H); and each emitter's jet speed after its fall from the nozzle. The floor is
 /// the container's, or the water's lowest point where the domain is open or periodic along
-/// gravity. Zero with no gravity, no emitter and no block moving.
-double realtime_flow_speed(const SimSpec& spec);
+/// gravity. Zero with no gravity, no emitter and no block moving. jets_only: the emitters' jets
+/// alone (the blocks still set an open container's floor).
+double realtime_flow_speed(const SimSpec& spec, bool jets_only = false);
 /// The substeps per second a PBF set-up takes in that flow: its frame's (solver.pbf.substeps over
 /// solver.pbf.time_step), or, where more, what solver.pbf.cfl asks at realtime_flow_speed (no
 /// particle moves more than cfl·spacing in a substep). At a GPU's sizes the CFL term rules: the
 /// 3D dam break at 255,552 particles took 380 substeps in its first second, not 120.
-double realtime_substeps_per_second(const SimSpec& pbf_spec);
+double realtime_substeps_per_second(const SimSpec& pbf_spec, bool jets_only = false);
 
 /// The median wall time (s) of a substep of `sim`, stepped on from where it is: one untimed
 /// substep (it sizes the scratch), then at least five, on until wall_s (at most 200). The clock

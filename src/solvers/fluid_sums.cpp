@@ -41,6 +41,9 @@ const Real* FluidWorld<D>::pack_positions() {
   }
 }
 
+// ρᵢ = Σⱼ m Wᵢⱼ + Σ_b Ψ_b W_ib. Without lists or periodic axes each fluid pair is visited once
+// (half_stencil()): W is symmetric, so a pair adds its weight to both particles, and ρᵢ, which its
+// partners add to as well, starts at zero. The same sum either way, in another order.
 template <int D>
 void FluidWorld<D>::compute_density() {
   const std::size_t n = fluid_.size();
@@ -50,61 +53,41 @@ void FluidWorld<D>::compute_density() {
   [[maybe_unused]] const Real* const psi = pa.psi;
   const uint32_t* const cells = pa.cells;
   Real* rho = fluid_.rho.data();
+  const bool half = half_stencil();
+  if (half) clear(&rho, n, 1);
   const Real* const packed = pack_positions();
-  if (half_stencil()) return compute_density_half();
   with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
-    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) {
-        Real xi[D];
-        for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
-        f8 wf{}, wb{};
-        this->template for_each_fluid_batch<periodic_v<decltype(K)>>(i, fx, xi, support2,
-                                    [&](auto, const f8*, f8 r2, i8 m) {
-                                      wf += simd::select(m, K.value(r2), f8{});
-                                    }, packed);
-        for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
-                                    [&](auto j, const f8*, f8 r2, i8 m) {
-                                      wb += simd::select(m, simd::at(psi, j) * K.value(r2), f8{});
-                                    });
-        rho[i] = mass * simd::hsum(wf) + simd::hsum(wb);
-      }
-    }, ThreadPool::kPairs);
-  });
-}
-
-// The density with each fluid pair visited once (half_stencil()): W is symmetric, so a pair adds
-// its weight to both particles, and ρᵢ, which its partners add to as well, starts at zero. The
-// same sum as compute_density, in another order.
-template <int D>
-void FluidWorld<D>::compute_density_half() {
-  const std::size_t n = fluid_.size();
-  const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
-  const PairArrays<D> pa = pair_arrays();
-  [[maybe_unused]] const auto &fx = pa.fx, &bx = pa.bx;
-  const Real* const psi = pa.psi;
-  const uint32_t* const cells = pa.cells;
-  Real* rho = fluid_.rho.data();
-  clear(&rho, n, 1);
-  with_kernel<D>(spec_.kernel, prm_.h, false, [&](const auto& K) {
-    const Real self = K.value(Real(0));
-    for_each_layer_in_two_phases([&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) {
-        Real xi[D];
-        for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
-        f8 wf{}, wb{};
+    auto particle = [&](std::size_t i, auto forward) {
+      Real xi[D];
+      for (int k = 0; k < D; ++k) xi[k] = fx[k][i];
+      f8 wf{}, wb{};
+      Real fluid = 0;  // the pairs' share of Σⱼ Wᵢⱼ (the forward walk adds the self term itself)
+      if constexpr (decltype(forward)::value) {
         for_each_forward_batch<D>(ctx_.fluid_grid, cells[i], uint32_t(i), fx, xi, support2,
                                   [&](uint32_t j, const f8*, f8 r2, i8 m, int valid) {
                                     const f8 w = simd::select(m, K.value(r2), f8{});
                                     wf += w;
                                     add_forward(rho, j, mass * w, valid);
                                   });
-        for_each_candidate_batch<D, false>(ctx_.boundary_grid, cells[i], bx, xi, support2,
-                                           [&](auto j, const f8*, f8 r2, i8 m) {
-                                             wb += simd::select(m, simd::at(psi, j) * K.value(r2), f8{});
-                                           });
-        rho[i] += mass * (self + simd::hsum(wf)) + simd::hsum(wb);
+        fluid = K.value(Real(0)) + simd::hsum(wf);
+      } else {
+        this->template for_each_fluid_batch<periodic_v<decltype(K)>>(i, fx, xi, support2,
+                                    [&](auto, const f8*, f8 r2, i8 m) {
+                                      wf += simd::select(m, K.value(r2), f8{});
+                                    }, packed);
+        fluid = simd::hsum(wf);
       }
-    });
+      for_each_candidate_batch<D, periodic_v<decltype(K)>>(ctx_.boundary_grid, cells[i], bx, xi, support2,
+                                  [&](auto j, const f8*, f8 r2, i8 m) {
+                                    wb += simd::select(m, simd::at(psi, j) * K.value(r2), f8{});
+                                  });
+      const Real r = mass * fluid + simd::hsum(wb);
+      if constexpr (decltype(forward)::value)
+        rho[i] += r;
+      else
+        rho[i] = r;
+    };
+    for_each_pair_sum_particle<periodic_v<decltype(K)>>(half, n, particle);
   });
 }
 
@@ -283,17 +266,7 @@ void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
             a_out[k][i] = ai[k];
         }
     };
-    if constexpr (!periodic_v<decltype(K)>) {
-      if (half) {
-        for_each_layer_in_two_phases([&](std::size_t b, std::size_t e) {
-          for (std::size_t i = b; i < e; ++i) particle(i, std::true_type{});
-        });
-        return;
-      }
-    }
-    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i) particle(i, std::false_type{});
-    }, ThreadPool::kPairs);
+    for_each_pair_sum_particle<periodic_v<decltype(K)>>(half, n, particle);
   });
 }
 

@@ -350,9 +350,25 @@ class FluidWorld : public Simulation {
       }, 1);
     }
   }
-  void compute_density_half();
   /// Zeroes arrays[0..count) over [0, n) (the half-stencil sums' starting value).
   void clear(Real* const* arrays, std::size_t n, int count = D);
+  /// Runs particle(i, tag) for every fluid particle of a pair sum: with `half` (never on a
+  /// periodic grid) layer by layer in two phases with tag std::true_type (the forward walk),
+  /// else in parallel with std::false_type (the full walk).
+  template <bool kPeriodic, class Particle>
+  void for_each_pair_sum_particle(bool half, std::size_t n, Particle&& particle) const {
+    if constexpr (!kPeriodic) {
+      if (half) {
+        for_each_layer_in_two_phases([&](std::size_t b, std::size_t e) {
+          for (std::size_t i = b; i < e; ++i) particle(i, std::true_type{});
+        });
+        return;
+      }
+    }
+    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+      for (std::size_t i = b; i < e; ++i) particle(i, std::false_type{});
+    }, ThreadPool::kPairs);
+  }
   bool lists_current() const {
     return ctx_.fluid_list.valid() && ctx_.fluid_list.size() == fluid_.size();
   }

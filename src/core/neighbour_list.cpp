@@ -10,6 +10,62 @@
 
 namespace rtsph {
 
+namespace {
+
+// The list build's candidate walk: emit(j, bits) for each batch of kListWidth candidates from j,
+// bits the lanes within r2 (lanes past the range end clear). Sixteen lanes where the CPU has
+// AVX-512, eight otherwise. The build tests every candidate and keeps ~15%, with no per-pair
+// work beyond the test, so the test is what a wider batch speeds up; the pair sums, whose
+// ranges and lists fill a sixteen-lane batch worse, stay at eight (docs/performance.md,
+// session 24). Candidates come in the same order either way, so the lists are the same.
+#if defined(__AVX512F__)
+constexpr uint32_t kListWidth = 16;
+#else
+constexpr uint32_t kListWidth = simd::kWidth;
+#endif
+
+template <int D, bool kPeriodic, class Emit>
+[[gnu::always_inline]] inline void list_batches(const UniformGrid<D>& grid, uint32_t cell,
+                                                const Real* const xs[D], const Real xi[D], Real r2max,
+                                                Emit&& emit) {
+#if defined(__AVX512F__)
+  typedef float v16 __attribute__((vector_size(64)));
+  auto ranges = [&](uint32_t begin, uint32_t end) {
+    for (uint32_t j = begin; j < end; j += kListWidth) {
+      v16 d[D];
+      for (int k = 0; k < D; ++k) d[k] = xi[k] - v16(_mm512_loadu_ps(xs[k] + j));
+      if constexpr (kPeriodic) grid.wrap_offsets(d);  // minimum image across a seam
+      v16 r2 = v16{};
+      for (int k = 0; k < D; ++k) r2 += d[k] * d[k];
+      const uint32_t valid = std::min(end - j, kListWidth);
+      const __mmask16 in = _mm512_cmp_ps_mask(__m512(r2), _mm512_set1_ps(r2max), _CMP_LT_OQ);
+      emit(j, unsigned(in) & ((1u << valid) - 1u));
+    }
+  };
+  if constexpr (kPeriodic)
+    grid.for_each_periodic_range(cell, ranges);
+  else
+    grid.for_each_flat_range(cell, ranges);
+#else
+  for_each_candidate_batch<D, kPeriodic, false>(grid, cell, xs, xi, r2max,
+                                                [&](uint32_t j, const simd::f8*, simd::f8, simd::i8 m) {
+                                                  emit(j, simd::bits(m));
+                                                });
+#endif
+}
+
+// Writes j + l for each lane l set in bits, in lane order, to out (kListWidth slots of room).
+[[gnu::always_inline]] inline void store_lanes(uint32_t* out, uint32_t j, unsigned bits) {
+#if defined(__AVX512F__)
+  const __m512i lanes = _mm512_set_epi32(15, 14, 13, 12, 11, 10, 9, 8, 7, 6, 5, 4, 3, 2, 1, 0);
+  _mm512_mask_compressstoreu_epi32(out, __mmask16(bits), _mm512_add_epi32(lanes, _mm512_set1_epi32(int(j))));
+#else
+  simd::store_packed(out, j, bits);
+#endif
+}
+
+}  // namespace
+
 template <int D>
 void NeighbourList<D>::build(const UniformGrid<D>& grid, const Real* const xs[D], std::size_t n,
                              Real r2, const ThreadPool& pool) {
@@ -38,13 +94,12 @@ void NeighbourList<D>::build(const UniformGrid<D>& grid, const Real* const xs[D]
         uint32_t c = 0;
 // Every batch, even one with no lane in range: ~30% are, unpredictably, and the
 // left-pack below is branch-free (build 1.13 -> 0.75 ms at 13k particles in 3D).
-        for_each_candidate_batch<D, decltype(periodic)::value, false>(grid, cells[i], xs, xi, r2,
-                                    [&](uint32_t j, const f8*, f8, i8 m) {
-                                      const unsigned bits = simd::bits(m);
+        list_batches<D, decltype(periodic)::value>(grid, cells[i], xs, xi, r2,
+                                    [&](uint32_t j, unsigned bits) {
                                       // Branch-free left-pack of the lanes in range: a bit loop
                                       // mispredicts on nearly every batch.
-                                      if (c + simd::kWidth <= stride) {
-                                        simd::store_packed(out + c, j, bits);
+                                      if (c + kListWidth <= stride) {
+                                        store_lanes(out + c, j, bits);
                                       } else {  // near the end: only in-bounds slots
                                         uint32_t k = c;
                                         for (unsigned r = bits; r; r &= r - 1, ++k)

@@ -69,8 +69,6 @@ template <int D, bool kPeriodic, class Emit>
 template <int D>
 void NeighbourList<D>::build(const UniformGrid<D>& grid, const Real* const xs[D], std::size_t n,
                              Real r2, const ThreadPool& pool) {
-  using simd::f8;
-  using simd::i8;
   n_ = n;
   grid_ = &grid;
   count_.resize(n);

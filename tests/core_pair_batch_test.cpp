@@ -220,24 +220,11 @@ TYPED_TEST(GridTest, PeriodicNeighbourListsMatchTheMinimumImage) {
   const std::size_t n = pts.size();
   bool periodic[D] = {};
   periodic[0] = true;
-  UniformGrid<D> grid;
-  grid.configure(vec<D>(0.0f), vec<D>(1.0f), cell, periodic);
+  Built<D> b;
+  build<D>(b, pts, vec<D>(0.0f), vec<D>(1.0f), cell, 1, periodic);
+  const UniformGrid<D>& grid = b.grid;
   ASSERT_TRUE(grid.periodic(0));
-  std::vector<float> in[D];
-  const float* inp[D];
-  for (int a = 0; a < D; ++a) {
-    in[a].resize(n);
-    for (std::size_t i = 0; i < n; ++i) in[a][i] = pts[i][a];
-    inp[a] = in[a].data();
-  }
-  grid.build(inp, n, ThreadPool(1));
-  AlignedArray<float> sorted[D];
-  const float* ptr[D];
-  for (int a = 0; a < D; ++a) {
-    sorted[a].resize(n);
-    for (std::size_t i = 0; i < n; ++i) sorted[a][i] = in[a][grid.order()[i]];
-    ptr[a] = sorted[a].data();
-  }
+  const float* const* ptr = b.ptr;
   NeighbourList<D> one, two;
   one.build(grid, ptr, n, cell * cell, ThreadPool(1));
   two.build(grid, ptr, n, cell * cell, ThreadPool(2));

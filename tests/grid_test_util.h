@@ -54,7 +54,7 @@ struct Built {
 
 template <int D, class P>
 void build(Built<D>& b, const P& pts, const Vec<D>& lo, const Vec<D>& hi, float cell,
-           int threads) {
+           int threads, const bool* periodic = nullptr) {
   const std::size_t n = pts.size();
   std::vector<float> in[D];
   const float* inp[D];
@@ -63,7 +63,7 @@ void build(Built<D>& b, const P& pts, const Vec<D>& lo, const Vec<D>& hi, float 
     for (std::size_t i = 0; i < n; ++i) in[a][i] = pts[i][a];
     inp[a] = in[a].data();
   }
-  b.grid.configure(lo, hi, cell);
+  b.grid.configure(lo, hi, cell, periodic);
   b.grid.build(inp, n, ThreadPool(threads));
   for (int a = 0; a < D; ++a) {
     b.sorted[a].resize(n);

@@ -247,5 +247,91 @@ TYPED_TEST(GridTest, PeriodicNeighbourListsMatchTheMinimumImage) {
   EXPECT_GT(across, n / 8) << "pairs across the seam";  // 3D: 750 for 3,000 particles
 }
 
+// mark_occupied_stencils: a walk from a cell whose stencil holds nothing is skipped, and that
+// may lose no candidate. Samples in two thin "walls" (x < 0.1 and y < 0.1, as a container's
+// wall samples lie), walked from query points all over the box (as fluid particles walk the
+// wall grid), plain and periodic along x (the stencil wraps, so cells at the far end see the
+// x < 0.1 wall), 1 and 2 threads.
+TYPED_TEST(GridTest, WalksFromCellsWithNothingNearSkipNoCandidate) {
+  constexpr int D = TypeParam::D;
+  const float cell = 0.08f, support2 = cell * cell;
+  Points<D> walls = uniform<D>(D == 2 ? 600 : 2000, 0.0f, 1.0f, 51);
+  for (std::size_t i = 0; i < walls.size(); ++i) walls[i][i % 2] *= 0.1f;
+  const Points<D> queries = uniform<D>(D == 2 ? 800 : 1500, 0.0f, 1.0f, 52);
+  for (const bool wrap : {false, true}) {
+    for (const int threads : {1, 2}) {
+      const std::string what = std::to_string(D) + "D" + (wrap ? " periodic" : "") + ", " +
+                               std::to_string(threads) + " threads";
+      bool periodic[D] = {};
+      periodic[0] = wrap;
+      Built<D> b;
+      build<D>(b, walls, vec<D>(0.0f), vec<D>(1.0f), cell, threads, periodic);
+      UniformGrid<D>& grid = b.grid;
+      const std::size_t n = walls.size();
+      for (std::size_t c = 0; c < grid.cell_count(); ++c)
+        ASSERT_FALSE(grid.stencil_empty(uint32_t(c))) << what << ": no table before marking";
+      grid.mark_occupied_stencils(ThreadPool(threads));
+      // The table says what the ranges say, cell by cell; padding cells are never empty.
+      std::size_t empty = 0, interior = 0;
+      for (std::size_t c = 0; c < grid.cell_count(); ++c) {
+        bool inside = true;
+        std::size_t rest = c;
+        for (int a = 0; a < D; ++a) {
+          const int i = int(rest % std::size_t(grid.dim(a)));
+          rest /= std::size_t(grid.dim(a));
+          inside = inside && i >= 1 && i <= grid.dim(a) - 2;
+        }
+        if (!inside) {
+          ASSERT_FALSE(grid.stencil_empty(uint32_t(c))) << what << ": padding cell " << c;
+          continue;
+        }
+        ++interior;
+        std::size_t in_reach = 0;
+        grid.for_each_range(uint32_t(c), [&](uint32_t lo, uint32_t hi) { in_reach += hi - lo; });
+        ASSERT_EQ(grid.stencil_empty(uint32_t(c)), in_reach == 0) << what << ": cell " << c;
+        empty += in_reach == 0;
+      }
+      EXPECT_GT(empty, interior / 3) << what << ": most cells are far from the walls";
+      EXPECT_LT(empty, interior) << what;
+      // Every query finds exactly its brute-force (minimum-image) candidates.
+      std::size_t pairs = 0;
+      for (const auto& q : queries) {
+        float xi[D];
+        Vec<D> p;
+        for (int a = 0; a < D; ++a) p[a] = xi[a] = q[a];
+        std::vector<uint32_t> want, got;
+        for (std::size_t j = 0; j < n; ++j) {
+          float r2 = 0;
+          for (int a = 0; a < D; ++a) {
+            float d = xi[a] - b.ptr[a][j];
+            if (wrap && a == 0) {
+              d = d > 0.5f * grid.period(0) ? d - grid.period(0) : d;
+              d = d < -0.5f * grid.period(0) ? d + grid.period(0) : d;
+            }
+            r2 += d * d;
+          }
+          if (r2 < support2) want.push_back(uint32_t(j));
+        }
+        auto collect = [&](uint32_t j, const simd::f8*, simd::f8, simd::i8 m) {
+          for (int l = 0; l < simd::kWidth; ++l)
+            if (m[l]) got.push_back(j + uint32_t(l));
+        };
+        if (wrap)
+          for_each_candidate_batch<D, true>(grid, grid.cell_of(p), b.ptr, xi, support2, collect);
+        else
+          for_each_candidate_batch<D, false>(grid, grid.cell_of(p), b.ptr, xi, support2, collect);
+        std::sort(got.begin(), got.end());
+        ASSERT_EQ(got, want) << what << ": query at cell " << grid.cell_of(p);
+        pairs += want.size();
+      }
+      EXPECT_GT(pairs, queries.size() / 4) << what << ": queries near the walls find samples";
+      // A new build drops the table: its cells would describe the old samples.
+      build<D>(b, queries, vec<D>(0.0f), vec<D>(1.0f), cell, threads, periodic);
+      for (std::size_t c = 0; c < grid.cell_count(); ++c)
+        ASSERT_FALSE(grid.stencil_empty(uint32_t(c))) << what << ": table kept after a build";
+    }
+  }
+}
+
 }  // namespace
 }  // namespace rtsph::grid_test

@@ -41,26 +41,9 @@ void UniformGrid<D>::configure(const Vec<D>& lo, const Vec<D>& hi, Real cell, co
 }
 
 template <int D>
-uint32_t UniformGrid<D>::cell_of(const Vec<D>& p) const {
-  uint32_t key = 0, stride = 1;
-  for (int a = 0; a < D; ++a) {
-    double f = (double(p[a]) - double(origin_[a])) * inv_cell_[a];
-    if (period_[a] > 0) {
-      // Wrap into the period's cells 1..n (a point slightly outside after a correction).
-      const double n = double(dims_[a] - 2);
-      f = 1.0 + (f - 1.0) - n * std::floor((f - 1.0) / n);
-    }
-    // The comparison form also sends NaN to the edge cell instead of undefined behaviour.
-    int c = f >= 1.0 ? (f < double(dims_[a] - 1) ? int(f) : dims_[a] - 2) : 1;
-    key += uint32_t(c) * stride;
-    stride *= uint32_t(dims_[a]);
-  }
-  return key;
-}
-
-template <int D>
 void UniformGrid<D>::build(const Real* const xs[D], std::size_t n, const ThreadPool& pool) {
   n_ = n;
+  occupancy_current_ = false;
   keys_.resize(n);
   keys_sorted_.resize(n);
   order_.resize(n);
@@ -84,6 +67,30 @@ void UniformGrid<D>::build(const Real* const xs[D], std::size_t n, const ThreadP
   }
   for (std::size_t c = cells_; c > 0; --c) s[c] = s[c - 1];
   s[0] = 0;
+}
+
+template <int D>
+void UniformGrid<D>::mark_occupied_stencils(const ThreadPool& pool) {
+  occupied_.resize(cells_);
+  uint8_t* out = occupied_.data();
+  pool.parallel_for(cells_, [&](std::size_t b, std::size_t e) {
+    for (std::size_t c = b; c < e; ++c) {
+      // Padding cells count as occupied: their stencils would leave the grid, and no walk
+      // starts there (cell_of clamps to the interior).
+      bool interior = true;
+      std::size_t rest = c;
+      for (int a = 0; a < D; ++a) {
+        const int i = int(rest % std::size_t(dims_[a]));
+        rest /= std::size_t(dims_[a]);
+        interior = interior && i >= 1 && i <= dims_[a] - 2;
+      }
+      bool any = !interior;
+      if (interior)
+        for_each_range(uint32_t(c), [&](uint32_t lo, uint32_t hi) { any = any || hi > lo; });
+      out[c] = any ? 1 : 0;
+    }
+  });
+  occupancy_current_ = true;
 }
 
 template class UniformGrid<2>;

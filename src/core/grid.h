@@ -13,6 +13,7 @@
 #include <cstdint>
 #include <cstddef>
 #include <algorithm>
+#include <cmath>
 
 #include "core/aligned_array.h"
 #include "core/parallel.h"
@@ -40,11 +41,37 @@ class UniformGrid {
   /// 1 / cell edge along `axis`, in double: cell_of's arithmetic (the GPU backend repeats it).
   double inv_cell(int axis) const { return inv_cell_[axis]; }
 
-  uint32_t cell_of(const Vec<D>& p) const;
+  /// The cell holding p (clamped to the interior cells; wrapped along periodic axes). Inline:
+  /// the force sum calls it once per particle.
+  [[gnu::always_inline]] uint32_t cell_of(const Vec<D>& p) const {
+    uint32_t key = 0, stride = 1;
+    for (int a = 0; a < D; ++a) {
+      double f = (double(p[a]) - double(origin_[a])) * inv_cell_[a];
+      if (period_[a] > 0) {
+        // Wrap into the period's cells 1..n (a point slightly outside after a correction).
+        const double n = double(dims_[a] - 2);
+        f = 1.0 + (f - 1.0) - n * std::floor((f - 1.0) / n);
+      }
+      // The comparison form also sends NaN to the edge cell instead of undefined behaviour.
+      const int c = f >= 1.0 ? (f < double(dims_[a] - 1) ? int(f) : dims_[a] - 2) : 1;
+      key += uint32_t(c) * stride;
+      stride *= uint32_t(dims_[a]);
+    }
+    return key;
+  }
 
   /// Sorts particles by cell. xs[k] is the k-th coordinate array. Afterwards order()[new] = old,
   /// and cell_start()/sorted_cells() describe the particles in the new order.
   void build(const Real* const xs[D], std::size_t n, const ThreadPool& pool);
+
+  /// After build(): notes, per cell, whether any particle lies in its stencil's ranges. Walks
+  /// from a cell with none (for_each_candidate_batch) then skip the 3^(D-1) range lookups: most
+  /// fluid particles have no wall sample within reach, and the wall grid is built rarely (at
+  /// start, and after each sort where obstacles move) but walked by every pair sum. The next
+  /// build() drops the table.
+  void mark_occupied_stencils(const ThreadPool& pool);
+  /// True only when the table is current and `cell`'s stencil holds no particle.
+  bool stencil_empty(uint32_t cell) const { return occupancy_current_ && occupied_[cell] == 0; }
 
   const uint32_t* order() const { return order_.data(); }
   const uint32_t* cell_start() const { return start_.data(); }
@@ -168,6 +195,8 @@ class UniformGrid {
   int dims_[D]{};
   std::size_t cells_ = 0, n_ = 0;
   AlignedArray<uint32_t> keys_, keys_sorted_, order_, start_;
+  AlignedArray<uint8_t> occupied_;  // mark_occupied_stencils()
+  bool occupancy_current_ = false;
 };
 
 }  // namespace rtsph

@@ -62,6 +62,7 @@ template <int D, bool kPeriodic, bool kSkipEmpty = true, class Fn>
 [[gnu::always_inline]] inline void for_each_candidate_batch(const UniformGrid<D>& grid, uint32_t cell,
                                      const Real* const xs[D], const Real xi[D], Real support2,
                                      Fn&& fn) {
+  if (grid.stencil_empty(cell)) return;  // nothing within a cell (mark_occupied_stencils)
   auto batches = [&](uint32_t begin, uint32_t end) {
     detail::range_batches<D, kPeriodic, kSkipEmpty>(grid, xs, xi, support2, begin, end,
         [&](uint32_t j, const simd::f8* d, simd::f8 r2, simd::i8 mask, int) { fn(j, d, r2, mask); });

@@ -258,6 +258,21 @@ void FluidWorld<D>::put_back_escaped() {
     hi[k] = Real(prm_.domain_max[k]);
   }
   put_back_ += pool_.parallel_reduce(fluid_.size(), std::uint64_t(0), [&](std::size_t b, std::size_t e) {
+    // Almost always nothing has escaped: one read-only pass that vectorises finds out, and
+    // only a chunk with a particle to fix runs the per-particle loop below.
+    bool any = false;
+    for (int k = 0; k < D; ++k) {
+      const Real* x = fluid_.x[k].data();
+      const Real* v = fluid_.v[k].data();
+      // A periodic axis keeps [lo, hi): its last float inside is the one below hi.
+      const Real l = lo[k], vmax = std::numeric_limits<Real>::max(),
+                 h = ctx_.fluid_grid.period(k) > 0 ? std::nextafter(hi[k], lo[k]) : hi[k];
+      int bad = 0;
+      for (std::size_t i = b; i < e; ++i)  // comparisons are false for NaN: "not inside"
+        bad |= int(!((x[i] >= l) & (x[i] <= h))) | int(!(std::abs(v[i]) <= vmax));
+      any = any || bad != 0;
+    }
+    if (!any) return std::uint64_t(0);
     std::uint64_t count = 0;
     for (std::size_t i = b; i < e; ++i) {
       bool moved = false;

@@ -31,13 +31,19 @@ std::string name(const ::testing::TestParamInfo<Case>& info) {
   return s;
 }
 
+// The case's scene with its method and spacing.
+SimSpec spec_of(const Case& c) {
+  SimSpec s = load_scene(c.scene);
+  apply_override(s, std::string("solver.method=") + c.method);
+  apply_override(s, "fluid.spacing=" + std::to_string(c.spacing));
+  return s;
+}
+
 class WallsHold : public ::testing::TestWithParam<Case> {};
 
 TEST_P(WallsHold, DamBreakPutsNothingBack) {
   const Case& c = GetParam();
-  SimSpec s = load_scene(c.scene);
-  apply_override(s, std::string("solver.method=") + c.method);
-  apply_override(s, "fluid.spacing=" + std::to_string(c.spacing));
+  const SimSpec s = spec_of(c);
   auto sim = make_simulation(s, 1);
   const std::size_t count = sim->fluid().count;
   while (sim->time() < c.until) sim->step();
@@ -76,9 +82,7 @@ class PutBack : public ::testing::TestWithParam<Case> {};
 
 TEST_P(PutBack, ANaNParticleIsReturnedAndCounted) {
   const Case& c = GetParam();
-  SimSpec s = load_scene(c.scene);
-  apply_override(s, std::string("solver.method=") + c.method);
-  apply_override(s, "fluid.spacing=" + std::to_string(c.spacing));
+  const SimSpec s = spec_of(c);
   auto sim = make_simulation(s, 2);
   const int D = s.dimension;
   const std::size_t n = sim->fluid().count, victim = n / 2;

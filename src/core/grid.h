@@ -79,7 +79,7 @@ class UniformGrid {
   const uint32_t* sorted_cells() const { return keys_sorted_.data(); }
   std::size_t particle_count() const { return n_; }
   std::size_t bytes() const {
-    return order_.bytes() + start_.bytes() + keys_.bytes() + keys_sorted_.bytes();
+    return order_.bytes() + start_.bytes() + keys_.bytes() + keys_sorted_.bytes() + occupied_.bytes();
   }
 
   /// The minimum image of the offsets d (x_i − x_j) along periodic axes: |d| ≤ period/2. Any

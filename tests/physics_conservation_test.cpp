@@ -5,6 +5,7 @@
 #include <cstring>
 #include <random>
 
+#include "core/parallel.h"
 #include "test_scenes.h"
 
 namespace rtsph {
@@ -99,6 +100,20 @@ TEST(Determinism, Tank3DBitwiseIdenticalFor1To3Threads) {
   SimSpec s = test::tank(3, 0.3, 0.3, 0.03);
   s.fluid_blocks[0].max = {{0.15, 0.3, 0.3}};  // a 3D dam break: the column collapses
   identical_for_thread_counts(s, 150);
+}
+
+// Above the pool's element grain (ThreadPool::kCheap, 8,192 per thread) the element-wise
+// loops (EOS, kick, drift, permutations, reductions, the put-back check) split across threads
+// too, which the small cases above never reach: 31,250 particles, three threads' worth, with
+// every method.
+TEST(Determinism, LoopsAboveTheElementGrainBitwiseIdenticalFor1To3Threads) {
+  SimSpec s = test::dam_break_2d(1.0, 0.008);
+  ASSERT_GE(2.0 / (s.spacing * s.spacing), 3.0 * double(ThreadPool::kCheap));
+  for (const char* method : {"wcsph", "pbf", "dfsph"}) {
+    SCOPED_TRACE(method);
+    s.method = method;
+    identical_for_thread_counts(s, 12);
+  }
 }
 
 TEST(Determinism, TwoSimulationsSideBySideDoNotInteract) {

@@ -52,8 +52,11 @@ class ThreadPool {
   // catches the next loop of the same step, and a loop only gets as many threads as it has
   // `grain` elements per thread. Element-wise loops (a few ns per element) keep the default;
   // pair sums (0.3–1 µs per particle) pass kPairs. The thread count never changes results, so
-  // neither does the grain.
-  static constexpr std::size_t kCheap = 32768;
+  // neither does the grain. With the spinning workers, 8,192 elements per thread pays: from
+  // 32,768, WCSPH at 60k ran 7% faster (its EOS, permutations and reductions had run on one
+  // thread), and nothing below 16k particles changed; 4,096 gained nothing more
+  // (docs/performance.md, "Session 25").
+  static constexpr std::size_t kCheap = 8192;
   static constexpr std::size_t kPairs = 512;
 
   /// Calls fn(begin, end) on disjoint ranges covering [0, n).

@@ -54,7 +54,8 @@ class ThreadPool {
   // pair sums (0.3–1 µs per particle) pass kPairs. The thread count never changes results, so
   // neither does the grain. With the spinning workers, 8,192 elements per thread pays: from
   // 32,768, WCSPH at 60k ran 7% faster (its EOS, permutations and reductions had run on one
-  // thread), and nothing below 16k particles changed; 4,096 gained nothing more
+  // thread), and nothing below 16k particles changed. 4,096 gained a few percent between 8k
+  // and 16k, with outliers where a loop's work is about what a hand-off costs (a 10k kick)
   // (docs/performance.md, "Session 25").
   static constexpr std::size_t kCheap = 8192;
   static constexpr std::size_t kPairs = 512;

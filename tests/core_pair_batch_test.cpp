@@ -270,8 +270,8 @@ TYPED_TEST(GridTest, WalksFromCellsWithNothingNearSkipNoCandidate) {
       const std::size_t n = walls.size();
       for (std::size_t c = 0; c < grid.cell_count(); ++c)
         ASSERT_FALSE(grid.stencil_empty(uint32_t(c))) << what << ": no table before marking";
-      grid.mark_occupied_stencils(ThreadPool(threads));
-      // The table says what the ranges say, cell by cell; padding cells are never empty.
+      grid.mark_occupied_stencils();
+      // The table says what the ranges say, interior cell by interior cell.
       std::size_t empty = 0, interior = 0;
       for (std::size_t c = 0; c < grid.cell_count(); ++c) {
         bool inside = true;
@@ -281,10 +281,7 @@ TYPED_TEST(GridTest, WalksFromCellsWithNothingNearSkipNoCandidate) {
           rest /= std::size_t(grid.dim(a));
           inside = inside && i >= 1 && i <= grid.dim(a) - 2;
         }
-        if (!inside) {
-          ASSERT_FALSE(grid.stencil_empty(uint32_t(c))) << what << ": padding cell " << c;
-          continue;
-        }
+        if (!inside) continue;  // padding: no particle lies there, no walk starts there
         ++interior;
         std::size_t in_reach = 0;
         grid.for_each_range(uint32_t(c), [&](uint32_t lo, uint32_t hi) { in_reach += hi - lo; });

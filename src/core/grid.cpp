@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 
 namespace rtsph {
@@ -70,26 +71,37 @@ void UniformGrid<D>::build(const Real* const xs[D], std::size_t n, const ThreadP
 }
 
 template <int D>
-void UniformGrid<D>::mark_occupied_stencils(const ThreadPool& pool) {
+void UniformGrid<D>::mark_occupied_stencils() {
+  // A cell's stencil holds a particle exactly when one of its 3^D neighbours does (the
+  // neighbourhood is symmetric, wrapped along periodic axes as for_each_range wraps it), so the
+  // table is the occupied cells dilated by one: work in the occupied cells, not in the grid,
+  // which matters where obstacles move and the wall grid is rebuilt every step.
   occupied_.resize(cells_);
   uint8_t* out = occupied_.data();
-  pool.parallel_for(cells_, [&](std::size_t b, std::size_t e) {
-    for (std::size_t c = b; c < e; ++c) {
-      // Padding cells count as occupied: their stencils would leave the grid, and no walk
-      // starts there (cell_of clamps to the interior).
-      bool interior = true;
-      std::size_t rest = c;
-      for (int a = 0; a < D; ++a) {
-        const int i = int(rest % std::size_t(dims_[a]));
-        rest /= std::size_t(dims_[a]);
-        interior = interior && i >= 1 && i <= dims_[a] - 2;
-      }
-      bool any = !interior;
-      if (interior)
-        for_each_range(uint32_t(c), [&](uint32_t lo, uint32_t hi) { any = any || hi > lo; });
-      out[c] = any ? 1 : 0;
+  std::memset(out, 0, cells_);
+  const uint32_t* key = keys_sorted_.data();
+  const int lo_z = D == 3 ? -1 : 0, hi_z = D == 3 ? 1 : 0;
+  for (std::size_t i = 0; i < n_; ++i) {
+    if (i > 0 && key[i] == key[i - 1]) continue;  // sorted: one visit per occupied cell
+    int c[3] = {0, 0, 0};
+    uint32_t rest = key[i];
+    for (int a = 0; a < D; ++a) {
+      c[a] = int(rest % uint32_t(dims_[a]));
+      rest /= uint32_t(dims_[a]);
     }
-  });
+    auto wrapped = [&](int a, int v) {  // interior cells are 1..dims-2
+      if (period_[a] <= 0) return v;
+      const int n = dims_[a] - 2;
+      return v < 1 ? v + n : v > n ? v - n : v;
+    };
+    for (int dz = lo_z; dz <= hi_z; ++dz)
+      for (int dy = -1; dy <= 1; ++dy)
+        for (int dx = -1; dx <= 1; ++dx) {
+          std::size_t k = std::size_t(wrapped(0, c[0] + dx)) + std::size_t(wrapped(1, c[1] + dy)) * std::size_t(dims_[0]);
+          if constexpr (D == 3) k += std::size_t(wrapped(2, c[2] + dz)) * std::size_t(dims_[0]) * std::size_t(dims_[1]);
+          out[k] = 1;
+        }
+  }
   occupancy_current_ = true;
 }
 

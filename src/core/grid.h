@@ -64,13 +64,14 @@ class UniformGrid {
   /// and cell_start()/sorted_cells() describe the particles in the new order.
   void build(const Real* const xs[D], std::size_t n, const ThreadPool& pool);
 
-  /// After build(): notes, per cell, whether any particle lies in its stencil's ranges. Walks
-  /// from a cell with none (for_each_candidate_batch) then skip the 3^(D-1) range lookups: most
-  /// fluid particles have no wall sample within reach, and the wall grid is built rarely (at
-  /// start, and after each sort where obstacles move) but walked by every pair sum. The next
-  /// build() drops the table.
-  void mark_occupied_stencils(const ThreadPool& pool);
-  /// True only when the table is current and `cell`'s stencil holds no particle.
+  /// After build(): notes, per interior cell, whether any particle lies in its stencil's
+  /// ranges. Walks from a cell with none (for_each_candidate_batch) then skip the 3^(D-1) range
+  /// lookups: most fluid particles have no wall sample within reach, and every pair sum walks
+  /// the wall grid. Costs a clear of the table and 3^D marks per occupied cell (the wall grid
+  /// is rebuilt every step where obstacles move). The next build() drops the table.
+  void mark_occupied_stencils();
+  /// True only when the table is current and interior `cell`'s stencil holds no particle (the
+  /// padding cells, where no particle lies, are not described).
   bool stencil_empty(uint32_t cell) const { return occupancy_current_ && occupied_[cell] == 0; }
 
   const uint32_t* order() const { return order_.data(); }

@@ -133,7 +133,7 @@ void FluidWorld<D>::state_loaded() {
   const Real* xs[D];
   for (int k = 0; k < D; ++k) xs[k] = boundary_.x[k].data();
   ctx_.boundary_grid.build(xs, boundary_.size(), pool_);
-  ctx_.boundary_grid.mark_occupied_stencils(pool_);
+  ctx_.boundary_grid.mark_occupied_stencils();
   boundary_.permute(ctx_.boundary_grid.order(), ctx_.tmp, pool_);
   compute_wall_geometry();
   // The fluid was saved in cell order (DFSPH and WCSPH save right after a sort and only change

@@ -84,21 +84,12 @@ void UniformGrid<D>::mark_occupied_stencils() {
   for (std::size_t i = 0; i < n_; ++i) {
     if (i > 0 && key[i] == key[i - 1]) continue;  // sorted: one visit per occupied cell
     int c[3] = {0, 0, 0};
-    uint32_t rest = key[i];
-    for (int a = 0; a < D; ++a) {
-      c[a] = int(rest % uint32_t(dims_[a]));
-      rest /= uint32_t(dims_[a]);
-    }
-    auto wrapped = [&](int a, int v) {  // interior cells are 1..dims-2
-      if (period_[a] <= 0) return v;
-      const int n = dims_[a] - 2;
-      return v < 1 ? v + n : v > n ? v - n : v;
-    };
+    coordinates(key[i], c);
     for (int dz = lo_z; dz <= hi_z; ++dz)
       for (int dy = -1; dy <= 1; ++dy)
         for (int dx = -1; dx <= 1; ++dx) {
-          std::size_t k = std::size_t(wrapped(0, c[0] + dx)) + std::size_t(wrapped(1, c[1] + dy)) * std::size_t(dims_[0]);
-          if constexpr (D == 3) k += std::size_t(wrapped(2, c[2] + dz)) * std::size_t(dims_[0]) * std::size_t(dims_[1]);
+          std::size_t k = std::size_t(wrap(0, c[0] + dx)) + std::size_t(wrap(1, c[1] + dy)) * std::size_t(dims_[0]);
+          if constexpr (D == 3) k += std::size_t(wrap(2, c[2] + dz)) * std::size_t(dims_[0]) * std::size_t(dims_[1]);
           out[k] = 1;
         }
   }

@@ -158,29 +158,20 @@ class UniformGrid {
   void for_each_periodic_range(uint32_t cell, Fn&& fn) const {
     const uint32_t* s = start_.data();
     int c[3] = {0, 0, 0};
-    uint32_t rest = cell;
-    for (int a = 0; a < D; ++a) {
-      c[a] = int(rest % uint32_t(dims_[a]));
-      rest /= uint32_t(dims_[a]);
-    }
-    auto wrapped = [&](int a, int v) {  // interior cells are 1..dims-2
-      if (period_[a] <= 0) return v;
-      const int n = dims_[a] - 2;
-      return v < 1 ? v + n : v > n ? v - n : v;
-    };
+    coordinates(cell, c);
     const bool split_x = period_[0] > 0 && (c[0] == 1 || c[0] == dims_[0] - 2);
     const int dz_lo = D == 3 ? -1 : 0, dz_hi = D == 3 ? 1 : 0;
     for (int dz = dz_lo; dz <= dz_hi; ++dz)
       for (int dy = -1; dy <= 1; ++dy) {
-        const int y = wrapped(1, c[1] + dy);
-        const int z = D == 3 ? wrapped(2, c[2] + dz) : 0;
+        const int y = wrap(1, c[1] + dy);
+        const int z = D == 3 ? wrap(2, c[2] + dz) : 0;
         const uint32_t row = uint32_t(z) * uint32_t(dims_[1]) * uint32_t(dims_[0]) + uint32_t(y) * uint32_t(dims_[0]);
         if (!split_x) {
           const uint32_t k = row + uint32_t(c[0] - 1);
           fn(s[k], s[k + 3]);
         } else {
           for (int dx = -1; dx <= 1; ++dx) {
-            const uint32_t k = row + uint32_t(wrapped(0, c[0] + dx));
+            const uint32_t k = row + uint32_t(wrap(0, c[0] + dx));
             fn(s[k], s[k + 1]);
           }
         }
@@ -188,6 +179,20 @@ class UniformGrid {
   }
 
  private:
+  /// The cell's coordinate along each axis (padding included: interior cells are 1..dims-2).
+  void coordinates(uint32_t cell, int c[3]) const {
+    for (int a = 0; a < D; ++a) {
+      c[a] = int(cell % uint32_t(dims_[a]));
+      cell /= uint32_t(dims_[a]);
+    }
+  }
+  /// A neighbour's coordinate v along `axis`, continued past the seam of a periodic axis.
+  int wrap(int axis, int v) const {
+    if (period_[axis] <= 0) return v;
+    const int n = dims_[axis] - 2;
+    return v < 1 ? v + n : v > n ? v - n : v;
+  }
+
   Vec<D> origin_{};
   Real cell_[D]{};
   double inv_cell_[D]{};

@@ -130,15 +130,12 @@ template <int D>
 void FluidWorld<D>::state_loaded() {
   // Rebuild the grids for the loaded order without reordering: the arrays were saved sorted,
   // and resorting here could permute particles within a cell differently than a straight run.
-  const Real* xs[D];
-  for (int k = 0; k < D; ++k) xs[k] = boundary_.x[k].data();
-  ctx_.boundary_grid.build(xs, boundary_.size(), pool_);
-  ctx_.boundary_grid.mark_occupied_stencils();
-  boundary_.permute(ctx_.boundary_grid.order(), ctx_.tmp, pool_);
-  compute_wall_geometry();
+  // The wall samples are sorted as at start (the stable sort leaves sorted samples in place).
+  sort_boundary_by_cell();
   // The fluid was saved in cell order (DFSPH and WCSPH save right after a sort and only change
   // velocities after it), and the counting sort is stable, so this rebuilds the same cell
   // ranges without moving a particle; DFSPH's first pair loop of the next step reads them.
+  const Real* xs[D];
   for (int k = 0; k < D; ++k) xs[k] = fluid_.x[k].data();
   ctx_.fluid_grid.build(xs, fluid_.size(), pool_);
   // The lists follow from the same positions and order, so they match the straight run's too.

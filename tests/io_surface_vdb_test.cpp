@@ -6,6 +6,7 @@
 // This file and src/io/surface_vdb.cpp are the only ones that include OpenVDB.
 #include <unistd.h>
 
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdio>
@@ -253,6 +254,64 @@ TEST_F(SurfaceTest, MeshOfTheRestingBlockIsClosedAndMatchesTheBlock) {
   fs::remove_all(dir_);
   check_block_mesh(read_obj(export_frame("obj", options())), "obj (settled)");
   check_block_mesh(read_obj(export_frame("obj", options(0.5))), "obj adaptivity 0.5 (settled)");
+}
+
+/// An octahedron (vertex normals = positions), wound counter-clockwise from outside; `folded`
+/// replaces its edge (+x, +y) by the diagonal (+z, -z) through the inside, so the two triangles
+/// on that diagonal face sideways, against their vertices' normals.
+SurfaceMesh octahedron(bool folded) {
+  SurfaceMesh m;
+  m.points = {1, 0, 0, 0, 1, 0, 0, 0, 1, -1, 0, 0, 0, -1, 0, 0, 0, -1};  // +x +y +z -x -y -z
+  m.normals = m.points;
+  m.triangles = {0, 1, 2, 1, 3, 2, 3, 4, 2, 4, 0, 2, 1, 0, 5, 3, 1, 5, 4, 3, 5, 0, 4, 5};
+  if (folded) {  // (+x, +y, +z) and (+y, +x, -z) across (+x, +y) become (+x, -z, +z), (-z, +y, +z)
+    const std::uint32_t a[] = {0, 5, 2}, b[] = {5, 1, 2};
+    std::copy(a, a + 3, m.triangles.begin());
+    std::copy(b, b + 3, m.triangles.begin() + 12);
+  }
+  return m;
+}
+
+std::size_t inward(const SurfaceMesh& m) {
+  std::size_t count = 0;
+  for (std::size_t t = 0; t < m.triangle_count(); ++t) {
+    const std::uint32_t* v = &m.triangles[3 * t];
+    auto p = [&](int k) { return V3{m.points[3 * v[k]], m.points[3 * v[k] + 1], m.points[3 * v[k] + 2]}; };
+    const V3 fn = cross(sub(p(1), p(0)), sub(p(2), p(0)));
+    for (int k = 0; k < 3; ++k)
+      if (!(dot(fn, V3{m.normals[3 * v[k]], m.normals[3 * v[k] + 1], m.normals[3 * v[k] + 2]}) > 0)) {
+        ++count;
+        break;
+      }
+  }
+  return count;
+}
+
+TEST(MeshUnfold, AFoldIsFlippedBackAndTheMeshStaysClosed) {
+  SurfaceMesh m = octahedron(true);
+  ASSERT_EQ(inward(m), 2u);
+  EXPECT_EQ(unfold_triangles(m), 0u);
+  EXPECT_EQ(inward(m), 0u);
+  EXPECT_EQ(m.vertex_count(), 6u);
+  // Closed and consistently wound: every directed edge once, and its reverse present.
+  std::map<std::pair<std::uint32_t, std::uint32_t>, int> directed;
+  for (std::size_t t = 0; t < m.triangle_count(); ++t)
+    for (int k = 0; k < 3; ++k) ++directed[{m.triangles[3 * t + k], m.triangles[3 * t + (k + 1) % 3]}];
+  EXPECT_EQ(directed.size(), 24u);
+  for (const auto& [e, n] : directed) {
+    EXPECT_EQ(n, 1);
+    EXPECT_TRUE(directed.count({e.second, e.first}));
+  }
+  // The flip restored the edge (+x, +y) and removed the diagonal through the inside.
+  EXPECT_TRUE(directed.count({0, 1}) || directed.count({1, 0}));
+  EXPECT_FALSE(directed.count({2, 5}) || directed.count({5, 2}));
+}
+
+TEST(MeshUnfold, AMeshWithoutFoldsIsLeftAsItIs) {
+  SurfaceMesh m = octahedron(false);
+  const auto before = m.triangles;
+  EXPECT_EQ(unfold_triangles(m), 0u);
+  EXPECT_EQ(m.triangles, before);
 }
 
 TEST_F(SurfaceTest, PlyMeshHoldsTheSameMeshAsObj) {

@@ -8,7 +8,11 @@ namespace {
 using test::settles_to_hydrostatic;
 
 TEST(Hydrostatic, Tank2DSettlesToRhoGH) { settles_to_hydrostatic(2, 1.0, 1.0, 0.025); }
-TEST(Hydrostatic, Tank3DSettlesToRhoGH) { settles_to_hydrostatic(3, 0.3, 0.4, 0.025); }
+// 2 s: the sudden start's acoustic bounce runs up and down the side walls, and since the walls'
+// artificial viscosity sees a free-slip ghost (fluid_sums.cpp) nothing brakes that sliding but
+// the fluid's own viscosity. Averaged over the last 0.3 s the kinetic energy reads 0.0132 J at
+// 1 s (just above a quarter of the 0.0509 J peak) and 0.0058 J at 2 s.
+TEST(Hydrostatic, Tank3DSettlesToRhoGH) { settles_to_hydrostatic(3, 0.3, 0.4, 0.025, "wcsph", 0.05, 2.0); }
 // DFSPH settles too, but not to issue 9's 1%: averaged over every step of the last 0.3 s the 3D
 // tank reads 1.0149 (1.080 and a kinetic-energy plateau before the walls' hydrostatic pressure,
 // ForceTerms::wall_hydrostatic; a sample every 20 steps had read 1.002, three samples of a

@@ -4,9 +4,9 @@
 //         - sum_b Psi_b (P_i + P_b + Pi_ib) grad W_ib + beta-extrapolated wall viscosity
 //         + g + brush
 // with v_ij = v_i - v_j, Monaghan's Pi_ij = -alpha c0 h (v_ij.r_ij) / (rho_ij (r^2 + 0.01h^2)) for
-// approaching pairs, and the no-slip factor beta = 1 + d_b/d_i on container walls and obstacle
-// faces, for particles in front of the sample (Morris, Fox & Zhu 1997, eqs. 30-31; d_i floored
-// at a quarter spacing).
+// approaching pairs (at a wall sample against a free-slip ghost: 2(v_ib.n)(n.r_ib)), and the
+// no-slip factor beta = 1 + d_b/d_i on container walls and obstacle faces, for particles in front
+// of the sample (Morris, Fox & Zhu 1997, eqs. 30-31; d_i floored at a quarter spacing).
 // With NONPRESSURE (DFSPH's non-pressure accelerations, whose pressure comes from its solves):
 // no P_i, P_j or Adami p_b; the walls carry the hydrostatic part alone, P_b = -g.(x_i - x_b)/rho0
 // (the CPU's ForceTerms::wall_hydrostatic, as in pbf_external.comp).
@@ -51,16 +51,17 @@ void main() {
       float G = kernel_g(r2);
       vec4 bv = bvel[j];
       vec3 vib = vi - bv.xyz;
-      float vr = dot(vib, d);
       float inv = 1.0 / (r2 + P.eps);
 #ifdef NONPRESSURE
       float pib = -dot(P.gravity.xyz, d) * P.inv_rho0;
 #else
       float pib = Pi + bpress[j];
 #endif
-      if (vr < 0.0) pib += -P.ach * vr * inv * iri;
       float depth = bv.w;
       float front = dot(bnormal[j].xyz, d);  // > 0: x_i lies in front of the sample's face
+      // Artificial viscosity against a free-slip ghost, v_i - v_ghost = 2((v_i - v_b).n)n, as the CPU.
+      float vr = 2.0 * dot(vib, bnormal[j].xyz) * front;
+      if (vr < 0.0) pib += -P.ach * vr * inv * iri;
       float dn = front - depth;
       float beta = depth > 0.0 && front > 0.0 ? 1.0 + depth / (dn > P.dmin ? dn : P.dmin) : 1.0;
       float lam = beta * b.w * P.nu * (2.0 * iri) * G * r2 * inv;

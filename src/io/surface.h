@@ -42,6 +42,12 @@ struct SurfaceMesh {
   std::size_t triangle_count() const { return triangles.size() / 3; }
 };
 
+/// Flips the shared edge of each triangle that faces against its own vertices' normals (a fold)
+/// with a neighbour, where the two new triangles both face outwards: the mesh stays closed and
+/// consistently wound, and keeps its vertices. Adaptive meshing leaves such folds, mostly slivers
+/// on flat faces (mesh_unfold.cpp). Returns the triangles that still face inwards.
+std::size_t unfold_triangles(SurfaceMesh& mesh);
+
 /// The fluid surface as a signed-distance narrow band (negative inside), built as OpenVDB's
 /// particle fluid surface is: rasterise every particle as a sphere (tools::ParticlesToLevelSet),
 /// smooth away the bumps between spheres (LevelSetFilter), then erode so that a flat face lies

@@ -162,6 +162,7 @@ SurfaceMesh FluidLevelSet::mesh(double adaptivity) const {
     if (len > 0) n /= len;
     m.normals.insert(m.normals.end(), {float(n.x()), float(n.y()), float(n.z())});
   }
+  unfold_triangles(m);
   return m;
 }
 

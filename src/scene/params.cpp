@@ -147,7 +147,9 @@ const std::vector<ParamInfo>& parameter_table() {
       field<&SimSpec::artificial_viscosity>({.key = "solver.artificial_viscosity", .min = 0,
                                              .max = 2, .default_value = 0.02,
                                              .help = "Monaghan's α; damps noise at the cost of "
-                                                     "extra dissipation.",
+                                                     "extra dissipation. At walls and obstacles it "
+                                                     "damps the approach only: water slides along "
+                                                     "them freely (WCSPH, DFSPH).",
                                              .live = true}),
       field<&SimSpec::clamp_negative_pressure>({.key = "solver.clamp_negative_pressure",
                                                 .default_value = 1,

@@ -40,8 +40,8 @@ def _front_errors(T, Z):
 
 
 def _height_error(tau, H, offset_tau):
-    """Mean relative error of the residual column height against Table 6, the clock shifted by
-    the front's fitted origin (one clock for both)."""
+    """Mean relative error of the residual column height against Table 6, on the experiment's
+    clock shifted by offset_tau (0 for the case's figure; the front's fitted origin is reported)."""
     tau, H = np.asarray(tau), np.asarray(H)
     return float(np.mean([abs(np.interp(t - offset_tau, tau, H, left=1.0) / h - 1) for t, h in MARTIN_MOYCE_HEIGHT]))
 
@@ -73,8 +73,14 @@ def dam_break(method: str, level: str, threads: int) -> Result:
     sim, T, Z, H = _dam_break_run(method, spacing, threads)
     raw, fitted, offset = _front_errors(T, Z)
     tau = [t / math.sqrt(2) for t in T]  # τ = t·sqrt(g/a) = T/√2
-    height = _height_error(tau, H, offset / math.sqrt(2))
-    height_raw = _height_error(tau, H, 0.0)
+    # The front is compared with its time origin fitted (within 16 ms), as the physics test
+    # does: the experiment's surge starts late. The height is compared on the experiment's own
+    # clock: its early points (τ < 1, the column top's first fall) agree with every method on
+    # that clock and would not with the front's origin (docs/validation.md, session 26), so the
+    # surge's late start is the front's, not the clock's. The height on the front's clock is
+    # reported.
+    height = _height_error(tau, H, 0.0)
+    height_front_clock = _height_error(tau, H, offset / math.sqrt(2))
     conv = []
     failed = []
     if level == "full":
@@ -82,22 +88,23 @@ def dam_break(method: str, level: str, threads: int) -> Result:
             try:
                 _, t, z, h = _dam_break_run(method, s, threads)
                 fe = _front_errors(t, z)
-                conv.append((s, max(fe[1], _height_error([x / math.sqrt(2) for x in t], h, fe[2] / math.sqrt(2)))))
+                conv.append((s, max(fe[1], _height_error([x / math.sqrt(2) for x in t], h, 0.0))))
             except rtsph.InstabilityError as e:  # reported, and left out of the order
                 failed.append(f"spacing {s} m did not finish: {e}")
     r = Result(case="dam_break_2d", method=method,
-               metric=("worst of the mean relative errors of the surge front and of the residual column height, "
-                       "clock origin fitted to the front within 16 ms"),
+               metric=("worst of the mean relative errors of the surge front (time origin fitted within 16 ms) and "
+                       "of the residual column height (the experiment's clock)"),
                error=max(fitted, height), tolerance=0.05, particles=sim.particle_count,
                wall_s=time.perf_counter() - t0,
                setup=f"1 m × 2 m column in a 6 m tank, spacing {spacing} m",
                reference=("Martin & Moyce 1952, n² = 2 column: surge front (Table 2, as in "
                           "tests/physics_dam_break_test.cpp) and residual height at the back wall (Table 6, τ ≤ 3.44)"),
                notes=(f"front {100 * fitted:.1f}% (raw clock {100 * raw:.1f}%), height {100 * height:.1f}% "
-                      f"(raw clock {100 * height_raw:.1f}%); fitted offset ΔT = {offset:.2f}. " + " ".join(failed)),
+                      f"(on the front's clock {100 * height_front_clock:.1f}%); front's fitted offset ΔT = {offset:.2f}. "
+                      + " ".join(failed)),
                series={"T": T, "Z": Z, "tau": tau, "H": H}, convergence=conv,
                extra={"front_error": fitted, "height_error": height, "raw_clock_error": raw,
-                      "raw_clock_height_error": height_raw, "clock_offset_T": offset})
+                      "front_clock_height_error": height_front_clock, "clock_offset_T": offset})
 
     def plot(ax, res):
         line, = ax.plot(res.series["T"], res.series["Z"], "-", label=f"rtsph {res.method}: front Z")

@@ -108,6 +108,9 @@ def dam_break(method: str, level: str, threads: int) -> Result:
 
     def plot(ax, res):
         line, = ax.plot(res.series["T"], res.series["Z"], "-", label=f"rtsph {res.method}: front Z")
+        off = res.extra.get("clock_offset_T", 0.0)  # the front as compared: its origin fitted
+        ax.plot(np.asarray(res.series["T"]) + off, res.series["Z"], ":", color=line.get_color(),
+                label=f"front, origin fitted (ΔT = {off:.2f})")
         ax.plot(np.asarray(res.series["tau"]), 4 * np.asarray(res.series["H"]), "--", color=line.get_color(),
                 label=f"rtsph {res.method}: 4H against τ")
         ax.plot(*zip(*MARTIN_MOYCE_FRONT), "o", color="k", label="Martin & Moyce 1952")

@@ -13,6 +13,7 @@
 #include <cmath>
 #include <cstdint>
 #include <unordered_map>
+#include <unordered_set>
 #include <utility>
 #include <vector>
 
@@ -51,13 +52,11 @@ std::size_t unfold_triangles(SurfaceMesh& m) {
     }
     return least;
   };
-  // Directed edge -> the triangle that runs it (closed and consistently wound: one each).
+  // Directed edge -> the triangle that runs it (closed and consistently wound: one each), kept
+  // for the triangles that touch a fold's vertices only: every edge a flip looks up or creates
+  // has one of those vertices as an end, so a mesh of millions of triangles with a handful of
+  // folds maps a few dozen edges, and one without folds none.
   std::unordered_map<std::uint64_t, std::uint32_t> edge;
-  edge.reserve(3 * count);
-  for (std::size_t t = 0; t < count; ++t) {
-    const Tri v = tri(t);
-    for (int k = 0; k < 3; ++k) edge[key(v[k], v[(k + 1) % 3])] = std::uint32_t(t);
-  }
   auto set = [&](std::size_t t, const Tri& v) {
     for (int k = 0; k < 3; ++k) {
       m.triangles[3 * t + k] = v[k];
@@ -68,11 +67,22 @@ std::size_t unfold_triangles(SurfaceMesh& m) {
   // and its own flip must come before a sliver's next to it takes the edge): one flip can leave
   // the neighbour's other edge to flip next.
   std::vector<std::pair<double, std::size_t>> folds;
+  std::unordered_set<std::uint32_t> near;  // the folds' vertices
   for (int pass = 0; pass < 4; ++pass) {
     folds.clear();
     for (std::size_t t = 0; t < count; ++t)
       if (const double q = facing(tri(t)); q <= 0) folds.emplace_back(q, t);
+    if (folds.empty()) break;
     std::sort(folds.begin(), folds.end());
+    near.clear();
+    for (const auto& f : folds)
+      for (const std::uint32_t v : tri(f.second)) near.insert(v);
+    edge.clear();
+    for (std::size_t t = 0; t < count; ++t) {
+      const Tri v = tri(t);
+      if (near.count(v[0]) || near.count(v[1]) || near.count(v[2]))
+        for (int k = 0; k < 3; ++k) edge[key(v[k], v[(k + 1) % 3])] = std::uint32_t(t);
+    }
     bool changed = false;
     for (const auto& [_, t] : folds) {
       const Tri v = tri(t);

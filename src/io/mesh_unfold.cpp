@@ -68,11 +68,11 @@ std::size_t unfold_triangles(SurfaceMesh& m) {
   // the neighbour's other edge to flip next.
   std::vector<std::pair<double, std::size_t>> folds;
   std::unordered_set<std::uint32_t> near;  // the folds' vertices
-  for (int pass = 0; pass < 4; ++pass) {
+  for (int pass = 0;; ++pass) {
     folds.clear();
     for (std::size_t t = 0; t < count; ++t)
       if (const double q = facing(tri(t)); q <= 0) folds.emplace_back(q, t);
-    if (folds.empty()) break;
+    if (folds.empty() || pass == 4) return folds.size();
     std::sort(folds.begin(), folds.end());
     near.clear();
     for (const auto& f : folds)
@@ -119,11 +119,8 @@ std::size_t unfold_triangles(SurfaceMesh& m) {
       set(best_u, best_b);
       changed = true;
     }
-    if (!changed) break;
+    if (!changed) return folds.size();  // no flip: the folds found are the ones left
   }
-  std::size_t folded = 0;
-  for (std::size_t t = 0; t < count; ++t) folded += facing(tri(t)) <= 0;
-  return folded;
 }
 
 }  // namespace rtsph::io

@@ -330,15 +330,19 @@ TEST_P(GpuMethods, CheckpointsResumeAcrossBackends) {
 }
 
 // The CPU methods' tank test (hydrostatic_check.h) on the GPU, with each method's tolerance:
-// WCSPH 5%, PBF 3%, DFSPH 5% (below). (The 3D PBF tank measured 0.969 on the GPU, 3.1% low, against 0.9735 on the
+// WCSPH 5%, PBF 5% (at its stable weight), DFSPH 5% (below). (The 3D PBF tank measured 0.969 on the GPU, 3.1% low, against 0.9735 on the
 // CPU: both sit at the edge of PBF's 3%, PBF's own deficit (issue 9), so only 2D is asserted here.)
 TEST_F(GpuBackend, WcsphTankSettlesToRhoGH) {
   test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "wcsph", 0.05, 0,
                                [](const SimSpec& s) { return gpu::make_gpu_simulation(s, 1); });
 }
+// PBF at the stable Jacobi weight and 5%, as the CPU's (tests/physics_hydrostatic_test.cpp says why).
 TEST_F(GpuBackend, PbfTankSettlesToRhoGH) {
-  test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "pbf", 0.03, 3.0,
-                               [](const SimSpec& s) { return gpu::make_gpu_simulation(s, 1); });
+  test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "pbf", 0.05, 3.0, [](const SimSpec& s) {
+    SimSpec spec = s;
+    spec.pbf_omega = 0;
+    return gpu::make_gpu_simulation(spec, 1);
+  });
 }
 // DFSPH with the CPU test's tolerance for the 2D tank (5%: the CPU reads 3.9%; tests/
 // physics_hydrostatic_test.cpp says why it is not issue 9's 1%).

@@ -194,6 +194,10 @@ TEST_P(GpuMethods, SurfaceTensionAndAdhesionAsOnTheCpu) {
     std::printf("%s %dD, %zu particles, t = %.4f s: GPU - CPU at most %.3g m; the surface forces moved particles "
                 "up to %.3g m\n", GetParam(), dim, g.count, gpu->time(), diff, moved);
     EXPECT_GT(moved, 0.05 * spec.spacing) << dim << "D: the forces act";
-    EXPECT_LT(diff, 1e-3 * moved) << dim << "D";
+    // PBF to 3e-3: with s_corr acting only on pairs closer than the kernel's gradient peak
+    // (pbf::gradient_peak; none are in this drop) nothing stiffens the rest lattice against the
+    // backends' round-off any more. Measured 1.5e-6 m (2D) and 2.4e-6 m (3D), 1.4e-3 and 2.2e-3
+    // of the motion, the same as with s_corr off; 5e-7 m when every pair carried s_corr.
+    EXPECT_LT(diff, (pbf ? 3e-3 : 1e-3) * moved) << dim << "D";
   }
 }

@@ -1,6 +1,6 @@
 // PBF, Algorithm 1 lines 13-14, the Jacobi iteration's second half:
 //   dx_i = (1/rho0)[sum_j m (lambda_i + lambda_j + s_corr) grad W_ij + sum_b Psi_b 2 lambda_i grad W_ib]  (eq. 14)
-//   s_corr = -k (W(r)/W(dq))^n                                                                            (eq. 13)
+//   s_corr = -k [(W(r)/W(dq))^n - (W(r*)/W(dq))^n]+, r* where |grad W| peaks (pbf::gradient_peak)     (eq. 13)
 // then x_i + dx_i, stopped on a container wall plane (collision response), into pos_next: every
 // correction of an iteration reads the same positions. The fluid pairs come from the substep's
 // lists (pbf_list.comp), or the grid for a particle they could not hold. When the solve's gate
@@ -8,7 +8,7 @@
 // position buffers after every correction it queued.
 BUFFER_POS BUFFER_FKEY BUFFER_FSTART BUFFER_LAMBDA BUFFER_WGRAD BUFFER_POS_NEXT BUFFER_NLIST BUFFER_NCOUNT
 BUFFER_STATS
-uniform float inv_w_dq, k_corr;
+uniform float inv_w_dq, k_corr, q_floor;
 uniform int n_corr, use_lists;
 uniform uint list_stride, fluid_cap;
 
@@ -18,6 +18,7 @@ vec3 pair(vec3 xi, float li, uint j) {
   if (r2 >= P.support2) return vec3(0.0);
   float q = kernel_w(r2) * inv_w_dq, qn = q;
   for (int p = 1; p < n_corr; ++p) qn *= q;
+  qn = max(qn - q_floor, 0.0);  // only below the kernel's gradient peak (pbf::gradient_peak)
   return (li + lam[j].x - k_corr * qn) * kernel_g(r2) * d;
 }
 

@@ -11,7 +11,7 @@
 // could not hold. Returns at once when the solve's gate is closed (pbf_gate.comp).
 BUFFER_POS BUFFER_DENS BUFFER_FKEY BUFFER_FSTART BUFFER_BPOS BUFFER_BSTART BUFFER_LAMBDA BUFFER_WGRAD
 BUFFER_NLIST BUFFER_BLIST BUFFER_NCOUNT BUFFER_STATS
-uniform float eps, omega_relax, inv_w_dq, k_corr;
+uniform float eps, omega_relax, inv_w_dq, k_corr, q_floor;
 uniform int n_corr, with_share, use_lists;
 uniform uint list_stride, fluid_cap, boundary_cap;
 
@@ -31,6 +31,7 @@ void add_fluid(inout Sums s, vec3 xi, uint j) {
   if (with_share != 0) {
     float q = w * inv_w_dq, qn = q;
     for (int p = 1; p < n_corr; ++p) qn *= q;
+    qn = max(qn - q_floor, 0.0);
     s.vw += G * r2;
     s.vs += G * r2 * qn;
   }

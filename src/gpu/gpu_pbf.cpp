@@ -41,6 +41,7 @@ GpuPbf<D>::GpuPbf(const SimSpec& spec, int threads) : GpuWorld<D>(spec, threads)
   boundary_cap_ = GLuint(std::ceil(inside)) * GLuint(std::max(1, spec.boundary_layers));
   glGetInteger64v(GL_MAX_SHADER_STORAGE_BLOCK_SIZE, &max_block_bytes_);
   stable_weight_ = pbf::stable_weight<D>(this->spec_, this->prm_);
+  gradient_peak_ = pbf::gradient_peak<D>(this->spec_, this->prm_);
   lattice_gradient_norm_ = this->lattice_gradient_sum() / (this->prm_.rho0 * this->prm_.rho0);
   this->sort_particles();  // the cell ranges (the fluid is already in cell order)
   this->density_only();
@@ -156,8 +157,12 @@ void GpuPbf<D>::solve_density_constraint(double) {
                                                             : kTwoSidedRelax));
   const double dq = s.pbf_scorr_dq * this->prm_.support;
   const float w_dq = with_kernel<D>(s.kernel, this->prm_.h, [&](const auto& K) { return float(K.value(float(dq * dq))); });
+  const double w_peak = with_kernel<D>(s.kernel, this->prm_.h, [&](const auto& K) {
+    return double(K.value(float(gradient_peak_ * gradient_peak_)));
+  });
   for (const ComputeProgram* prog : {&correct_, &lambda_}) {  // λ: s_corr's share of the pressure
     prog->set("inv_w_dq", Real(1.0 / double(w_dq)));
+    prog->set("q_floor", Real(std::pow(w_peak / double(w_dq), s.pbf_scorr_n)));  // pbf::gradient_peak
     prog->set("k_corr", Real(s.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30)));
     prog->set("n_corr", GLint(s.pbf_scorr_n));
   }

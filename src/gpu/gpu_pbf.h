@@ -28,6 +28,7 @@ class GpuPbf final : public GpuWorld<D> {
   GLint64 max_block_bytes_ = 0;     // the largest storage block this GL allows
   bool lists_ = false;              // this substep's lists were built
   double stable_weight_ = 1;          // pbf::stable_weight, for solver.pbf.omega = 0
+  double gradient_peak_ = 0;          // pbf::gradient_peak (m): s_corr acts below it
   double lattice_gradient_norm_ = 0;  // Σⱼ|∇ⱼCᵢ|² inside the rest lattice (1/m²)
   int iterations_ = 0;             // of the last substep (the next one's first batch)
   double iteration_sum_ = 0;       // over the substeps this object solved (not a resumed run's)

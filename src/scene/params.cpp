@@ -248,9 +248,11 @@ const std::vector<ParamInfo>& parameter_table() {
                                   .live = true}),
       field<&SimSpec::pbf_scorr_k>({.key = "solver.pbf.scorr_k", .min = 0, .max = 10,
                                     .default_value = 0.1,
-                                    .help = "Artificial pressure s_corr = -k(W(r)/W(Δq))^n "
-                                            "against tensile clumping (in units of a unit "
-                                            "constraint's λ); 0 = off.",
+                                    .help = "Artificial pressure s_corr = -k[(W(r)/W(Δq))^n - "
+                                            "(W(r*)/W(Δq))^n]+ against clumping, on pairs closer "
+                                            "than r*, where the kernel's gradient peaks (2h/3 for "
+                                            "the cubic spline), so water at rest carries none (in "
+                                            "units of a unit constraint's λ); 0 = off.",
                                     .live = true}),
       field<&SimSpec::pbf_scorr_n>({.key = "solver.pbf.scorr_n", .min = 1, .max = 8,
                                     .default_value = 4, .help = "Exponent n of s_corr.",

@@ -57,11 +57,37 @@ double pbf::stable_weight(const SimSpec& spec, const ResolvedParams& prm) {
 template double pbf::stable_weight<2>(const SimSpec&, const ResolvedParams&);
 template double pbf::stable_weight<3>(const SimSpec&, const ResolvedParams&);
 
+// s_corr acts on the pairs closer than r*, where the kernel's gradient |∇W| peaks (2h/3 for the
+// cubic spline): below r* the pressure term's push weakens as a pair closes, so the pressure
+// alone cannot keep it apart (the pairing instability), and that is what s_corr is for. Measured
+// from its value at r*, it is zero for the pairs of water at rest (a spacing apart, 0.95 at the
+// least in a settled box), so it no longer carries load there: at Macklin & Müller's full
+// (W/W(Δq))ⁿ every pair pushed, as a pressure of its own that expanded the water and held a dam
+// break's residual column up (PBF's Martin & Moyce height 15.4% → 3.8%, quick level;
+// docs/validation.md, session 27). Spray stays apart as before (nearest pair ≥ 0.6 spacing in a
+// 3D dam break, against 0.06 with s_corr off).
+template <int D>
+double pbf::gradient_peak(const SimSpec& spec, const ResolvedParams& prm) {
+  return with_kernel<D>(spec.kernel, prm.h, [&](const auto& K) {
+    constexpr int kSamples = 4096;
+    double r_star = 0, g_max = 0;
+    for (int k = 1; k < kSamples; ++k) {
+      const double r = prm.support * k / kSamples;
+      const double g = std::abs(double(K.grad_factor(Real(r * r)))) * r;
+      if (g > g_max) { g_max = g; r_star = r; }
+    }
+    return r_star;
+  });
+}
+template double pbf::gradient_peak<2>(const SimSpec&, const ResolvedParams&);
+template double pbf::gradient_peak<3>(const SimSpec&, const ResolvedParams&);
+
 template <int D>
 Pbf<D>::Pbf(const SimSpec& spec, int threads) : W(spec, threads) {
   // Several sums per step over one neighbourhood: walk lists, not the grid.
   this->keep_neighbour_lists();
   stable_weight_ = pbf::stable_weight<D>(spec_, prm_);
+  gradient_peak_ = pbf::gradient_peak<D>(spec_, prm_);
   lattice_gradient_norm_ = this->lattice_gradient_sum() / (prm_.rho0 * prm_.rho0);
   this->compute_density();
   this->measure_density_error();
@@ -197,11 +223,13 @@ double Pbf<D>::compute_lambda() {
   [[maybe_unused]] Real* scorr_share = scorr_share_.data();
   const double compression = with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     const Real inv_w_dq = Real(1.0 / double(K.value(float(dq * dq))));
+    // s_corr's weight at r*, subtracted from every pair's (the live n and Δq may have changed).
+    const Real floor = Real(std::pow(double(K.value(float(gradient_peak_ * gradient_peak_))) * double(inv_w_dq), n_corr));
     return pool_.parallel_reduce(n, 0.0, [&](std::size_t b, std::size_t e) {
       // Locals, not the captured originals: the cache stores are floats, so the compiler must
       // otherwise assume they may overwrite the kernel's float constants and reload them.
       const auto Kl = K;
-      const Real w_dq_scale = inv_w_dq;
+      const Real w_dq_scale = inv_w_dq, q_floor = floor;
       const bool corr1 = n_corr & 1, corr2 = n_corr & 2, corr4 = n_corr & 4, corr8 = n_corr & 8;
       double block_compression = 0;
       for (std::size_t i = b; i < e; ++i) {
@@ -225,6 +253,7 @@ double Pbf<D>::compute_lambda() {
           if (corr2) qn *= q2;
           if (corr4) qn *= q4;
           if (corr8) qn *= q4 * q4;
+          qn = simd::max0(qn - q_floor);  // s_corr only below r* (pbf::gradient_peak)
           simd::store(cache_out[D] + slot, qn);
           if constexpr (kShare) {  // the pairs' virial weights xᵢⱼ·∇Wᵢⱼ = r²G, for s_corr's share
             const f8 v = G * r2;
@@ -281,7 +310,8 @@ double Pbf<D>::compute_lambda() {
   return n ? compression / double(n) : 0.0;
 }
 
-// Δxᵢ (eq. 14) with the artificial pressure s_corr = −k (W(r)/W(Δq))ⁿ (eq. 13), then x += Δx.
+// Δxᵢ (eq. 14) with the artificial pressure s_corr = −k [(W(r)/W(Δq))ⁿ − (W(r*)/W(Δq))ⁿ]₊ (eq. 13,
+// measured from r*: pbf::gradient_peak), then x += Δx.
 // The gradients and weights are the λ pass's: the positions have not moved since.
 template <int D>
 void Pbf<D>::apply_position_correction() {

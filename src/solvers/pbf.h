@@ -12,6 +12,11 @@ namespace pbf {
 /// 3D and 0.84 in 2D for the cubic spline at h = spacing.
 template <int D>
 double stable_weight(const SimSpec& spec, const ResolvedParams& prm);
+/// r* (m), where the kernel's |∇W| peaks (2h/3 for the cubic spline). s_corr's weight there,
+/// (W(r*)/W(Δq))ⁿ, is subtracted from each pair's and clamped at 0, so s_corr acts only on pairs
+/// closer than r* (pbf.cpp).
+template <int D>
+double gradient_peak(const SimSpec& spec, const ResolvedParams& prm);
 /// The weight of a clamped iteration's λ: solver.pbf.omega, or `stable` where that is 0.
 inline double jacobi_weight(const SimSpec& spec, double stable) {
   return spec.pbf_omega > 0 ? spec.pbf_omega : stable;
@@ -42,13 +47,14 @@ class Pbf final : public FluidWorld<D> {
   bool sort_after_edit() const override { return false; }  // step(): predict, then sort
 
   double stable_weight_ = 1;         // pbf::stable_weight, for solver.pbf.omega = 0
+  double gradient_peak_ = 0;         // pbf::gradient_peak (m)
   double lattice_gradient_norm_ = 0;  // Σⱼ|∇ⱼCᵢ|² of a particle inside the rest lattice (1/m²)
   AlignedArray<Real> lambda_, lambda_sum_, scorr_share_, rho_next_;
   std::array<AlignedArray<Real>, D> predicted_, delta_;
   AlignedArray<Real> packed_v_;  // 3D: (vx, vy, vz, ρ) records for the XSPH pass
   AlignedArray<Real> omega_[D == 2 ? 1 : 3];
   // What the λ pass leaves for the Δx pass of the same iteration (same positions): per listed
-  // pair ∇ᵢWᵢⱼ and the s_corr weight (W/W(Δq))ⁿ, zero on masked lanes; per particle the wall
+  // pair ∇ᵢWᵢⱼ and the s_corr weight [(W/W(Δq))ⁿ − floor]₊, zero on masked lanes; per particle the wall
   // gradient Σ_b Ψ_b∇W_ib. The Δx pass then evaluates no kernel and walks no wall.
   PairCache<D + 1> pair_cache_;  // per listed pair: ∇Wᵢⱼ (fields 0..D-1), s_corr weight (D)
   std::array<AlignedArray<Real>, D> wall_grad_;

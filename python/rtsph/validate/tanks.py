@@ -107,7 +107,7 @@ def hydrostatic(dim: int):
 #   Without it WCSPH's top layer pairs up (pressure clamped at 0 holds nothing apart there: a
 #   pair 0.47 spacings apart at the quick level), and DFSPH jitters twice as fast against the
 #   floor (session 19).
-STILL_LEVELS = {"quick": (0.025, 3.0, 1.0), "full": (0.02, 10.0, 2.0)}  # spacing (m), t_end, t_settle (s)
+STILL_LEVELS = {"quick": (0.025, 4.0, 1.0), "full": (0.02, 10.0, 2.0)}  # spacing (m), t_end, t_settle (s)
 STILL_SHIFTING = {"wcsph": 1.0, "dfsph": 1.0}
 # - PBF at the stable Jacobi weight (solver.pbf.omega = 0, session 21): at its default full step
 #   the clamped iteration cycles the lattice's stiffest mode and the water never comes to rest

@@ -98,7 +98,13 @@ inline f8 exp(f8 x) {
   for (int i = 0; i < kWidth; ++i) x[i] = std::exp(x[i]);
   return x;
 }
-inline f8 max0(f8 x) { return x > 0.0f ? x : f8{}; }
+inline f8 max0(f8 x) {
+#if defined(__AVX__)
+  return reinterpret_cast<f8>(_mm256_max_ps(reinterpret_cast<__m256>(x), _mm256_setzero_ps()));
+#else
+  return x > 0.0f ? x : f8{};
+#endif
+}
 inline f8 select(i8 m, f8 a, f8 b) { return m ? a : b; }
 inline bool any(i8 m) {
 #if defined(__AVX__)

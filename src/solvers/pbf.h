@@ -41,6 +41,7 @@ class Pbf final : public FluidWorld<D> {
   template <bool kShare>
   double compute_lambda();
   void apply_position_correction();
+  Real scorr_floor() const;                  // (W(r*)/W(Δq))ⁿ, r* = gradient_peak_
   void update_velocity(double dt);           // vᵢ = (x*ᵢ − xᵢ)/Δt (Algorithm 1, line 21)
   void xsph_and_vorticity(double dt);        // eqs. 15-17, and ρ at the corrected positions
   void add_method_stats(SimStats& s) const override;
@@ -54,7 +55,7 @@ class Pbf final : public FluidWorld<D> {
   AlignedArray<Real> packed_v_;  // 3D: (vx, vy, vz, ρ) records for the XSPH pass
   AlignedArray<Real> omega_[D == 2 ? 1 : 3];
   // What the λ pass leaves for the Δx pass of the same iteration (same positions): per listed
-  // pair ∇ᵢWᵢⱼ and the s_corr weight [(W/W(Δq))ⁿ − floor]₊, zero on masked lanes; per particle the wall
+  // pair ∇ᵢWᵢⱼ and the s_corr weight (W/W(Δq))ⁿ (its floor is subtracted where it is read), zero on masked lanes; per particle the wall
   // gradient Σ_b Ψ_b∇W_ib. The Δx pass then evaluates no kernel and walks no wall.
   PairCache<D + 1> pair_cache_;  // per listed pair: ∇Wᵢⱼ (fields 0..D-1), s_corr weight (D)
   std::array<AlignedArray<Real>, D> wall_grad_;

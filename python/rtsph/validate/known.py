@@ -8,7 +8,8 @@ measured (CPU, 2026-11-25) and why it fails (docs/validation.md tells the whole 
   one (or the entry's own margin, where the figure is known to move that much between hosts; a
   finite one: "did not finish" is never within);
 - every listed entry still fails: one that passes must leave the list, so that it is guarded as
-  a pass from then on.
+  a pass from then on. The exception is an entry marked noisy, whose figure is within its own
+  noise and passes or fails by round-off (PBF's droplets since session 27).
 So the passing cases are held to their tolerances, the failing ones are held where they are,
 and the report still says FAIL for each. This is not the issue's "validate --quick passes":
 that needs this list empty.
@@ -33,6 +34,10 @@ class Known:
     # -march=native, so round-off differs by CPU), the spread measured, with the hosts named in
     # `why`.
     margin: float = REGRESSION_MARGIN
+    # A figure within its own noise (the case's ± on the quantity it is made of is as large as
+    # the quantity): it passes or fails by the draw of round-off, so a pass does not ask for the
+    # entry to leave. The report still says PASS or FAIL as measured; `why` gives the spread.
+    noisy: bool = False
 
     def ceiling(self) -> float:
         return math.inf if self.measured is None else self.margin * self.measured
@@ -44,18 +49,20 @@ _SPH = ("0.04 m (quick) is too coarse for 3 cm at H1 (0.03 m was no better, PBF 
         "before session 26's wall change and session 27's s_corr change); 0.02 m (full) passes")
 
 KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
-    ("static_droplet_2d", "pbf"): Known(0.5767, "σ calibrates to 0.36 N/m from a jump of 7.2 ± 5.3 Pa at R1; the "
-                                             "jump at R2 (5.7 Pa) is larger than Laplace's 3.6. The figure swings "
-                                             "with round-off (0.29 to 2.31 across builds before session 27's "
-                                             "s_corr change, 1.30 after session 14's), so its margin keeps the "
-                                             "ceiling near where it was (1.6)", margin=2.8),
+    ("static_droplet_2d", "pbf"): Known(0.3596, "σ calibrates to 0.69 N/m from a jump of 13.8 ± 1.8 Pa at R1; the "
+                                             "jump at R2 (4.4 Pa) is below Laplace's 6.9. The figure swings with "
+                                             "round-off: 0.29 to 2.31 across builds before session 27, 1.30 after "
+                                             "session 14, 0.58 and 0.36 with session 27's two builds of the same "
+                                             "s_corr, and σ < 0 at the full level", margin=4.5, noisy=True),
     ("static_droplet_3d", "wcsph"): Known(0.4432, _ST3),
-    ("static_droplet_3d", "pbf"): Known(0.2883, _ST3 + " (its R1 jump 115 ± 96 Pa: margin 2)", margin=2.0),
+    ("static_droplet_3d", "pbf"): Known(0.2883, "within its noise: R1's jump 88 ± 52 Pa; 21% (session 14), 29% and "
+                                             "3.1% (a pass) with session 27's two builds of the same s_corr, 6.1% "
+                                             "at the full level (45 ± 33 Pa)", margin=2.0, noisy=True),
     ("static_droplet_3d", "dfsph"): Known(0.3914, _ST3),
     ("oscillating_droplet_2d", "wcsph"): Known(4.193, _OSC),
-    ("oscillating_droplet_2d", "pbf"): Known(5.328, _OSC),
+    ("oscillating_droplet_2d", "pbf"): Known(3.185, _OSC),
     ("oscillating_droplet_2d", "dfsph"): Known(9.449, _OSC),
-    ("spheric_test2_3d", "pbf"): Known(0.03327, _SPH),
+    ("spheric_test2_3d", "pbf"): Known(0.0344, _SPH),
     ("spheric_test2_3d", "dfsph"): Known(0.03358, _SPH),
 }
 
@@ -69,7 +76,7 @@ def judge(results: Iterable, known: Dict[Tuple[str, str], Known] = KNOWN_FAILURE
             continue
         k = known.get((r.case, r.method))
         if r.passed:
-            if k is not None:
+            if k is not None and not k.noisy:
                 problems.append(f"{r.case} ({r.method}) now passes: remove it from "
                                 "python/rtsph/validate/known.py, so it is held to its tolerance")
             continue

@@ -64,8 +64,8 @@ template double pbf::stable_weight<3>(const SimSpec&, const ResolvedParams&);
 // least in a settled box), so it no longer carries load there: at Macklin & Müller's full
 // (W/W(Δq))ⁿ every pair pushed, as a pressure of its own that expanded the water and held a dam
 // break's residual column up (PBF's Martin & Moyce height 15.4% → 3.8%, quick level;
-// docs/validation.md, session 27). Spray stays apart as before (nearest pair ≥ 0.6 spacing in a
-// 3D dam break, against 0.06 with s_corr off).
+// docs/validation.md, session 27). Spray stays apart (Pbf.SprayStaysApart: the closest pair of a
+// 3D dam break 0.56 spacings apart, against 0.06 with s_corr off).
 template <int D>
 double pbf::gradient_peak(const SimSpec& spec, const ResolvedParams& prm) {
   return with_kernel<D>(spec.kernel, prm.h, [&](const auto& K) {

@@ -157,12 +157,10 @@ void GpuPbf<D>::solve_density_constraint(double) {
                                                             : kTwoSidedRelax));
   const double dq = s.pbf_scorr_dq * this->prm_.support;
   const float w_dq = with_kernel<D>(s.kernel, this->prm_.h, [&](const auto& K) { return float(K.value(float(dq * dq))); });
-  const double w_peak = with_kernel<D>(s.kernel, this->prm_.h, [&](const auto& K) {
-    return double(K.value(float(gradient_peak_ * gradient_peak_)));
-  });
+  const double q_floor = pbf::scorr_floor<D>(s, this->prm_, gradient_peak_);
   for (const ComputeProgram* prog : {&correct_, &lambda_}) {  // λ: s_corr's share of the pressure
     prog->set("inv_w_dq", Real(1.0 / double(w_dq)));
-    prog->set("q_floor", Real(std::pow(w_peak / double(w_dq), s.pbf_scorr_n)));  // pbf::gradient_peak
+    prog->set("q_floor", Real(q_floor));
     prog->set("k_corr", Real(s.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30)));
     prog->set("n_corr", GLint(s.pbf_scorr_n));
   }

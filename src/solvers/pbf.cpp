@@ -82,17 +82,19 @@ double pbf::gradient_peak(const SimSpec& spec, const ResolvedParams& prm) {
 template double pbf::gradient_peak<2>(const SimSpec&, const ResolvedParams&);
 template double pbf::gradient_peak<3>(const SimSpec&, const ResolvedParams&);
 
-// s_corr's weight (W(r*)/W(Δq))ⁿ at r*, subtracted from every pair's; computed per solve, since
-// n and Δq are live. Applied where the weight is used (the correction, and the share of the
-// pressure), not in the λ pass's cache: there one more operation per pair cost the 2D pass 17%.
+// Computed per solve, since n and Δq are live. Applied where the weight is used (the correction,
+// and the share of the pressure), not in the λ pass's cache: there one more operation per pair
+// cost the 2D pass 17%.
 template <int D>
-Real Pbf<D>::scorr_floor() const {
-  const double dq = spec_.pbf_scorr_dq * prm_.support;
-  return with_kernel<D>(spec_.kernel, prm_.h, [&](const auto& K) {
+double pbf::scorr_floor(const SimSpec& spec, const ResolvedParams& prm, double r_star) {
+  const double dq = spec.pbf_scorr_dq * prm.support;
+  return with_kernel<D>(spec.kernel, prm.h, [&](const auto& K) {
     const double w_dq = double(K.value(float(dq * dq)));
-    return Real(w_dq > 0 ? std::pow(double(K.value(float(gradient_peak_ * gradient_peak_))) / w_dq, spec_.pbf_scorr_n) : 0.0);
+    return w_dq > 0 ? std::pow(double(K.value(float(r_star * r_star))) / w_dq, spec.pbf_scorr_n) : 0.0;
   });
 }
+template double pbf::scorr_floor<2>(const SimSpec&, const ResolvedParams&, double);
+template double pbf::scorr_floor<3>(const SimSpec&, const ResolvedParams&, double);
 
 template <int D>
 Pbf<D>::Pbf(const SimSpec& spec, int threads) : W(spec, threads) {
@@ -235,7 +237,7 @@ double Pbf<D>::compute_lambda() {
   [[maybe_unused]] Real* scorr_share = scorr_share_.data();
   const double compression = with_kernel<D>(spec_.kernel, prm_.h, ctx_.fluid_grid.any_periodic(), [&](const auto& K) {
     const Real inv_w_dq = Real(1.0 / double(K.value(float(dq * dq))));
-    const Real floor = scorr_floor();
+    const Real floor = Real(pbf::scorr_floor<D>(spec_, prm_, gradient_peak_));
     return pool_.parallel_reduce(n, 0.0, [&](std::size_t b, std::size_t e) {
       // Locals, not the captured originals: the cache stores are floats, so the compiler must
       // otherwise assume they may overwrite the kernel's float constants and reload them.
@@ -329,7 +331,7 @@ void Pbf<D>::apply_position_correction() {
   const Real mass_over_rho0 = Real(prm_.mass / prm_.rho0), inv_rho0 = Real(1.0 / prm_.rho0);
   // s_corr in units of a unit constraint's λ inside the rest lattice, −1/Σ|∇C|².
   const Real k_corr = Real(spec_.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30));
-  const Real q_floor = scorr_floor();
+  const Real q_floor = Real(pbf::scorr_floor<D>(spec_, prm_, gradient_peak_));
   const NeighbourList<D>& list = ctx_.fluid_list;
   const Real* lambda = lambda_.data();
   // Jacobi: every Δx comes from the same state, the λ pass's (λ and the cached gradients, not the

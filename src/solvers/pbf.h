@@ -17,6 +17,9 @@ double stable_weight(const SimSpec& spec, const ResolvedParams& prm);
 /// closer than r* (pbf.cpp).
 template <int D>
 double gradient_peak(const SimSpec& spec, const ResolvedParams& prm);
+/// That weight, (W(r*)/W(Δq))ⁿ, for the spec's kernel, Δq and n (both backends use it).
+template <int D>
+double scorr_floor(const SimSpec& spec, const ResolvedParams& prm, double r_star);
 /// The weight of a clamped iteration's λ: solver.pbf.omega, or `stable` where that is 0.
 inline double jacobi_weight(const SimSpec& spec, double stable) {
   return spec.pbf_omega > 0 ? spec.pbf_omega : stable;
@@ -41,7 +44,6 @@ class Pbf final : public FluidWorld<D> {
   template <bool kShare>
   double compute_lambda();
   void apply_position_correction();
-  Real scorr_floor() const;                  // (W(r*)/W(Δq))ⁿ, r* = gradient_peak_
   void update_velocity(double dt);           // vᵢ = (x*ᵢ − xᵢ)/Δt (Algorithm 1, line 21)
   void xsph_and_vorticity(double dt);        // eqs. 15-17, and ρ at the corrected positions
   void add_method_stats(SimStats& s) const override;

@@ -204,9 +204,19 @@ int GpuDfsph<D>::solve(bool density, double dt, double tolerance, const char* na
     if (g.x == 0.0 || queued >= max_iterations) break;
     batch = 2;
   }
-  const int it = int(g.y);
+  int it = int(g.y);
   const double err = g.z / double(n);
-  last_sweeps_[density] = it;
+  last_sweeps_[density] = it;  // the batch to queue next time: the accelerated loop's sweeps
+  if (dfsph::smooths_last(it, rho)) {  // the CPU's closing plain sweep (Dfsph::solve says why)
+    gate(0);                          // reopened: the sweep and the kick return at once when closed
+    bind_method();
+    sweep_.set("w", Real(1));
+    sweep_.set("w1", Real(0));
+    sweep_.set("first", GLint(1));
+    sweep_.dispatch(n);
+    apply_pressure(0);
+    ++it;
+  }
   bind_method();
   totals_.set("mode", GLint(1));
   totals_.set("component", GLint(density ? 0 : 1));

@@ -29,6 +29,9 @@ bool targets_mean_density(const SimSpec& s, std::size_t fluid_count);
 /// The Chebyshev weight of sweep `it` (0-based) of a clamped density solve with spectral radius
 /// rho, from the previous sweep's `omega` (1 before the third sweep and for rho = 0).
 double chebyshev_weight(int it, double rho, double omega);
+/// Whether a solve that ran `sweeps` sweeps with Chebyshev's rho ends with one plain sweep: when
+/// the acceleration acted (a third sweep with rho > 0). Both backends; the reason at Dfsph::solve.
+bool smooths_last(int sweeps, double rho);
 /// Δt = cfl·d/max(|v|max, √head), head = |g| times the fluid's extent along gravity, also bounded
 /// by the force and viscous limits and max_dt; the fixed step in fixed mode.
 double time_step(const SimSpec& s, const ResolvedParams& prm, double v2max, double a2max,

@@ -293,7 +293,8 @@ const std::vector<ParamInfo>& parameter_table() {
                                         .help = "Chebyshev acceleration of the density solve's "
                                                 "Jacobi sweeps from the third sweep on (Wang "
                                                 "2015), with clamped pressure only: the spectral "
-                                                "radius ρ it assumes; 0 = plain relaxed Jacobi.",
+                                                "radius ρ it assumes; a solve it acted in ends "
+                                                "with one plain sweep; 0 = plain relaxed Jacobi.",
                                         .live = true}),
       field<&SimSpec::gas_smoothing>({.key = "solver.gas.smoothing", .default_text = "adaptive",
                                       .choices = {"adaptive", "global"},

@@ -207,8 +207,6 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
   }, ThreadPool::kPairs) / double(std::max<std::size_t>(1, n));
 }
 
-// vᵢ += Δt aᵢ with aᵢ = −Σⱼ m(Pᵢ + Pⱼ)∇Wᵢⱼ − 2Pᵢ Σ_b Ψ_b∇W_ib: the shared pressure
-// acceleration (walls mirror Pᵢ), from the cached gradients.
 namespace {
 constexpr int kChebyshevFrom = 2;  // why: at the solve loop (Dfsph::solve)
 }  // namespace
@@ -220,6 +218,8 @@ double dfsph::chebyshev_weight(int it, double rho, double omega) {
 
 bool dfsph::smooths_last(int sweeps, double rho) { return rho > 0 && sweeps > kChebyshevFrom; }
 
+// vᵢ += Δt aᵢ with aᵢ = −Σⱼ m(Pᵢ + Pⱼ)∇Wᵢⱼ − 2Pᵢ Σ_b Ψ_b∇W_ib: the shared pressure
+// acceleration (walls mirror Pᵢ), from the cached gradients.
 template <int D>
 void Dfsph<D>::apply_pressure(const Real* P, double dt) {
   const std::size_t n = fluid_.size();
@@ -301,7 +301,7 @@ int Dfsph<D>::solve(double dt, AlignedArray<Real>& total, double tolerance, cons
   // them into the next step: water at rest jittered at 14 mm/s rms (the quick still-water box,
   // 4-8 s; 5.1 with this sweep; docs/validation.md, session 28). Its residual is not measured:
   // the error reported is the last accelerated sweep's.
-  if (kDensity && dfsph::smooths_last(it, rho)) {
+  if (kDensity && dfsph::smooths_last(it, rho)) {  // the loop's change at w = 1, no momentum
     pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
       for (std::size_t i = b; i < e; ++i) {
         Real d = pressure_[i];

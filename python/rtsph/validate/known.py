@@ -46,7 +46,8 @@ class Known:
 _ST3 = "the 3D calibration drop is 5 spacings in radius at the quick level; the prediction at 2·R is off"
 _OSC = "the drop locks into an ellipse (Akinci's cohesion at h = spacing): no liquid oscillation to time"
 _SPH = ("H1's bore from the left wall comes late and spread out at 0.04 m (quick); 0.03 and 0.0275 m are no "
-        "better (session 28: PBF 3.47 and 3.43 cm, DFSPH 3.46 and 3.29 cm); 0.02 m (full) passes")
+        "better (session 28, before the closing sweep: PBF 3.47 and 3.43 cm, DFSPH 3.46 and 3.29 cm); 0.02 m "
+        "(full) passes")
 
 KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
     ("static_droplet_2d", "pbf"): Known(0.3596, "σ calibrates to 0.69 N/m from a jump of 13.8 ± 1.8 Pa at R1; the "

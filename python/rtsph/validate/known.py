@@ -43,7 +43,9 @@ class Known:
         return math.inf if self.measured is None else self.margin * self.measured
 
 
-_ST3 = "the 3D calibration drop is 5 spacings in radius at the quick level; the prediction at 2·R is off"
+_ST3 = ("the 3D calibration drop is 5 spacings in radius at the quick level; at the full level (6.7) the "
+        "prediction is still 21-32% off: the jump Akinci's two terms make together is not σ/R, and neither "
+        "term alone makes one (session 29)")
 _OSC = "the drop locks into an ellipse (Akinci's cohesion at h = spacing): no liquid oscillation to time"
 _SPH = ("H1's bore from the left wall comes late and spread out at 0.04 m (quick); 0.03 and 0.0275 m are no "
         "better (session 28, before the closing sweep: PBF 3.47 and 3.43 cm, DFSPH 3.46 and 3.29 cm); 0.02 m "

@@ -112,6 +112,29 @@ def test_bad_arguments_exit_2(args, tmp_path):
     assert vmain.main(args + ["--out", str(tmp_path)]) == 2
 
 
+def test_an_out_it_cannot_write_exits_2_before_any_case_runs(tmp_path, monkeypatch, capsys):
+    ran = []
+    monkeypatch.setitem(validate.CASES, "always_fails", lambda *a: ran.append(a) or _always_fails(*a))
+    blocker = tmp_path / "a_file"
+    blocker.write_text("")
+    for out in (blocker, blocker / "below"):  # a file where the directory should be, and below one
+        assert vmain.main(["always_fails", "--method", "wcsph", "--out", str(out)]) == 2
+        err = capsys.readouterr().err
+        assert err.count("\n") == 1 and "--out" in err and str(out) in err
+    assert ran == []
+    assert blocker.read_text() == ""  # nothing lost
+
+    # A report that cannot be written at the end (the disk filled): one line, and the figures were
+    # already printed, a line per case.
+    def full_disk(*a, **k):
+        raise OSError(28, "No space left on device")
+    monkeypatch.setattr(vmain, "write_report", full_disk)
+    assert vmain.main(["always_fails", "--method", "wcsph", "--out", str(tmp_path / "r")]) == 2
+    err = capsys.readouterr().err
+    assert "No space left on device" in err and "always_fails (wcsph, quick) ... FAIL 1" in err
+    assert "Traceback" not in err
+
+
 def test_the_cli_hands_over_to_python(cli, tmp_path):
     env = dict(os.environ, RTSPH_PYTHON=sys.executable)
     r = subprocess.run([cli, "validate", "poiseuille_2d", "--method", "dfsph", "--out", str(tmp_path / "v")],

@@ -6,12 +6,26 @@ from __future__ import annotations
 import argparse
 import os
 import sys
+import tempfile
 import time
 
 from . import CASES, METHODS, run_case
 from .known import judge
 from .parallel import run_parallel
 from .report import write_report
+
+
+def _unwritable(out: str) -> str:
+    """Why the report cannot be written to directory `out` (created if missing), or ''."""
+    if os.path.exists(out) and not os.path.isdir(out):
+        return "it is a file, not a directory"
+    try:
+        os.makedirs(out, exist_ok=True)
+        with tempfile.TemporaryFile(dir=out):
+            pass
+    except OSError as e:
+        return f"cannot write the report there ({e.strerror or e})"
+    return ""
 
 
 def main(argv=None) -> int:
@@ -57,6 +71,12 @@ def main(argv=None) -> int:
     if args.known_failures and (level != "quick" or args.backend != "cpu"):
         print("rtsph validate: --known-failures records the quick level on the cpu backend only", file=sys.stderr)
         return 2
+    # The report is written at the end: an --out that cannot take it must stop the run before a
+    # case runs, not after the full level's quarter of an hour.
+    problem = _unwritable(args.out)
+    if problem:
+        print(f"rtsph validate: --out {args.out!r}: {problem}", file=sys.stderr)
+        return 2
     where = "" if args.backend == "cpu" else f", {args.backend}"
 
     def line(r, wall_s: float) -> str:
@@ -87,7 +107,12 @@ def main(argv=None) -> int:
                 results.append(r)
                 print(line(r, time.perf_counter() - t), file=sys.stderr)
     wall = time.perf_counter() - t0
-    write_report(args.out, results, level, threads, wall, args.backend, args.jobs)
+    try:
+        write_report(args.out, results, level, threads, wall, args.backend, args.jobs)
+    except OSError as e:  # the disk filled, or the directory went away, during the run
+        print(f"rtsph validate: --out {args.out!r}: could not write the report ({e.strerror or e}); "
+              "each case's figure is in the lines above", file=sys.stderr)
+        return 2
     failed = [r for r in results if r.applicable and not r.passed]
     print(f"rtsph validate: {len(results) - len(failed)}/{len(results)} passed or n/a in {wall:.0f} s; "
           f"report: {args.out}/report.html", file=sys.stderr)

@@ -61,7 +61,7 @@ TEST_F(ExporterTest, UnknownFormatNamesTheValidOnes) {
   try {
     make_exporter("xyz", dir_);
     FAIL() << "no error";
-  } catch (const IoError& e) {
+  } catch (const std::invalid_argument& e) {
     EXPECT_STREQ(e.what(), "unknown output format 'xyz' (valid: csv, vtk, ply, vdb, obj, ply-mesh)");
   }
 }

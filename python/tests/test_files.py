@@ -60,8 +60,9 @@ def test_export_writes_the_cli_frames(tank, tmp_path):
     assert np.array_equal(np.stack([data["x"], data["y"]], axis=1).astype(np.float32), sim.positions)
     vtk = sim.export(tmp_path / "vtk")
     assert vtk.endswith("frame_000000.vtp") and (tmp_path / "vtk" / "frames.pvd").exists()  # ParaView opens the .pvd
-    with pytest.raises(rtsph.IoError, match="format"):
+    with pytest.raises(ValueError, match="unknown output format 'xls'"):  # a bad argument, not an I/O error
         sim.export(tmp_path / "bad", format="xls")
+    assert not (tmp_path / "bad").exists()
 
 
 def test_render_returns_a_picture_of_the_water(tank, tmp_path):

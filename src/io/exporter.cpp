@@ -85,7 +85,9 @@ std::unique_ptr<Exporter> make_exporter(const std::string& format, const std::fi
       return e.make(dir, options);
     }
   }
-  throw IoError(fmt::format("unknown output format '{}' (valid: {})", format, fmt::join(exporter_formats(), ", ")));
+  // A bad argument, not an I/O failure: `rtsph run` exits 2 for it, as for an unknown attribute.
+  throw std::invalid_argument(
+      fmt::format("unknown output format '{}' (valid: {})", format, fmt::join(exporter_formats(), ", ")));
 }
 
 }  // namespace rtsph::io

@@ -64,4 +64,5 @@ expect_refused "--voxel-size -1: must be a positive length" dam_break_3d --forma
 expect_refused "--voxel-size 1e-05 m" dam_break_3d --format vdb --voxel-size 1e-5
 expect_refused "--adaptivity 2: must be between 0 and 1" dam_break_3d --format ply-mesh --adaptivity 2
 expect_refused "--surface-radius 0.5: must be between" dam_break_3d --format vdb --surface-radius 0.5
+expect_refused "unknown output format 'xyz' (valid: csv," dam_break_2d --format xyz
 echo "surface_export: all checks passed"

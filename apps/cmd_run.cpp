@@ -337,15 +337,16 @@ void add_run_command(CLI::App& app, int& exit_code) {
   auto o = std::make_shared<RunOptions>();
   auto* cmd = app.add_subcommand("run", "Run a scene headless and print a summary");
   cmd->add_option("scene", o->scene, "Scene file or built-in name (see `rtsph scenes`); optional with --resume");
-  cmd->add_option("--until", o->until, "Stop at this simulated time (s); default: the scene's end_time");
-  cmd->add_option("--steps", o->steps, "Stop after this many steps");
+  cmd->add_option("--until", o->until, "Stop at this simulated time (s); default: the scene's end_time")
+      ->check(non_negative_number());
+  cmd->add_option("--steps", o->steps, "Stop after this many steps")->check(non_negative_number());
   cmd->add_option("--threads", o->threads, "Worker threads (0 = all cores)")->check(CLI::Range(0, 1024));
   cmd->add_option("--backend", o->backend, "Where the solver runs: cpu, gpu (OpenGL compute, headless through EGL) "
                                            "or auto (= cpu for run); default: the scene's solver.backend")
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   cmd->add_option("--set", o->sets, "Override a scene parameter, e.g. --set fluid.spacing=0.01");
   cmd->add_option("--export", o->export_dir, "Write frames into this directory");
-  cmd->add_option("--every", o->every, "Simulated seconds between exported frames")->check(CLI::PositiveNumber);
+  cmd->add_option("--every", o->every, "Simulated seconds between exported frames")->check(positive_number());
   cmd->add_option("--format", o->format,
                   "Export format: particles (csv, vtk, ply) or the fluid surface (vdb: level set; obj, "
                   "ply-mesh: triangle mesh; 3D scenes only)");
@@ -359,14 +360,14 @@ void add_run_command(CLI::App& app, int& exit_code) {
   cmd->add_flag("--quiet", o->quiet, "No progress output; with --stats-json the summary goes only to that file");
   cmd->add_option("--checkpoint-every", o->checkpoint_every,
                   "Write a checkpoint every S simulated seconds, and at the end")
-      ->check(CLI::NonNegativeNumber);
+      ->check(non_negative_number());
   cmd->add_option("--checkpoint-dir", o->checkpoint_dir,
                   "Directory for checkpoints (default: EXPORT/checkpoints or ./checkpoints)");
   cmd->add_option("--resume", o->resume,
                   "Continue from this checkpoint (or the newest ckpt_*.ckpt in this directory)");
   cmd->add_option("--max-density-error", o->max_density_error,
                   "Stop as unstable when (rho-rho0)/rho0 exceeds this (default 0.5)")
-      ->check(CLI::PositiveNumber);
+      ->check(positive_number());
   cmd->add_flag("--recover", o->recover, "When unstable, halve dt and retry from the last good state");
   cmd->add_option("--max-retries", o->max_retries, "Retries allowed by --recover (default 3)")->check(CLI::Range(0, 30));
   cmd->add_option("--snapshot-every", o->snapshot_every,

@@ -5,6 +5,27 @@
 
 namespace rtsph::app {
 
+/// A number above zero, or at least zero, with a message a person can read: CLI11's
+/// PositiveNumber and NonNegativeNumber print their range to the last digit of DBL_MAX.
+inline CLI::Validator positive_number() {
+  return CLI::Validator(
+      [](std::string& in) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(in, v)) return "'" + in + "' is not a number";
+        return v > 0 ? std::string() : "'" + in + "' must be above zero";
+      },
+      "POSITIVE");
+}
+inline CLI::Validator non_negative_number() {
+  return CLI::Validator(
+      [](std::string& in) -> std::string {
+        double v = 0;
+        if (!CLI::detail::lexical_cast(in, v)) return "'" + in + "' is not a number";
+        return v >= 0 ? std::string() : "'" + in + "' must be zero or more";
+      },
+      "NONNEGATIVE");
+}
+
 void add_run_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);
 void add_scenes_command(CLI::App& app, int& exit_code);

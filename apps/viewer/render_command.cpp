@@ -207,7 +207,7 @@ void add_render_command(CLI::App& app, int& exit_code) {
   cmd->add_option("scene", o->scene, "Scene file or built-in name (see `rtsph scenes`)")->required();
   cmd->add_option("--out", o->out, "Output: FILE.png (last frame), FILE.mp4 (video, ffmpeg) or a directory (frame_000000.png, …)")->required();
   cmd->add_option("--frames", o->frames, "Number of frames (default: the scene's end_time × fps)")->check(CLI::Range(1, 1000000));
-  cmd->add_option("--fps", o->fps, "Frames per simulated second; frames are 1/fps apart")->capture_default_str()->check(CLI::PositiveNumber);
+  cmd->add_option("--fps", o->fps, "Frames per simulated second; frames are 1/fps apart")->capture_default_str()->check(positive_number());
   cmd->add_option("--size", o->size, "Image size WxH")->capture_default_str();
   cmd->add_option("--style", o->style, "surface (water surface; 2D: filled contour) or particles")->capture_default_str();
   cmd->add_option("--color", o->color, "solid, speed, velocity, pressure, density or log_density (particle style)")->capture_default_str();

@@ -58,6 +58,26 @@ else
   failures=$((failures + 1))
 fi
 
+# Bad numbers on the command line: one readable line, exit 2, nothing run. A negative --until
+# or --steps ran to the scene's end before (the default's sentinel), and CLI11's own range
+# message printed the largest double to its last digit.
+bad_arg() {  # bad_arg NAME FRAGMENT ARGS...
+  local name=$1 fragment=$2
+  shift 2
+  runrc "$@"
+  if [ $rc -eq 2 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -qF -- "$fragment" err.txt && [ "$(wc -c <err.txt)" -lt 200 ]; then
+    echo "ok   $name: $(cat err.txt)"
+  else
+    echo "FAIL $name: rc $rc, stderr: $(cat err.txt)"
+    failures=$((failures + 1))
+  fi
+}
+bad_arg negative_until "--until: '-1' must be zero or more" dam_break_2d --until -1
+bad_arg negative_steps "--steps: '-5' must be zero or more" dam_break_2d --steps -5
+bad_arg zero_every "--every: '0' must be above zero" dam_break_2d --steps 1 --every 0 --export frames
+bad_arg word_every "--every: 'abc' is not a number" dam_break_2d --steps 1 --every abc --export frames
+[ ! -e frames ] || { echo "FAIL: a refused run wrote frames"; failures=$((failures + 1)); }
+
 if [ $failures -ne 0 ]; then
   echo "$failures bad-input case(s) failed"
   exit 1

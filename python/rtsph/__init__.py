@@ -11,6 +11,7 @@ arguments and arrays. See docs/python.md.
 from __future__ import annotations
 
 import json
+import math
 import os
 import sys
 import time as _time
@@ -206,6 +207,8 @@ class Simulation(_rtsph._Simulation):
         KeyboardInterrupt between two steps, leaving the simulation usable.
         """
         end = self.scene.end_time if until is None else float(until)
+        if math.isnan(end):  # every comparison with NaN is false: it would return at once
+            raise ValueError(f"run: until must be a time in s, got {until}")
         if every is not None and not every > 0:
             raise ValueError(f"run: every must be positive, got {every}")
         bar = _Progress(self.time, end) if progress else None

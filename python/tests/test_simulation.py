@@ -88,6 +88,18 @@ def test_bad_writes_raise(tank, bad, error):
     assert np.array_equal(sim.positions, before)
 
 
+@pytest.mark.parametrize("call, message", [
+    (lambda sim: sim.step(-1), "n must be >= 0"),
+    (lambda sim: sim.run(until=float("nan")), "until must be a time"),
+    (lambda sim: sim.run(until=0.01, every=0), "every must be positive"),
+])
+def test_bad_run_arguments_raise_and_leave_the_state(tank, call, message):
+    sim = rtsph.Simulation(tank, threads=1)
+    with pytest.raises(ValueError, match=message):
+        call(sim)
+    assert sim.time == 0 and sim.step_count == 0
+
+
 def test_live_parameters(tank):
     sim = rtsph.Simulation(tank, threads=1)
     sim.set_parameter("fluid.viscosity", 1e-3)

@@ -352,11 +352,6 @@ int Viewer::run() {
   realtime_ = !opt_.accurate;
   const SimSpec scene = load_scene(opt_.scene);
   if (!opt_.script.empty()) script_ = load_script(opt_.script);
-  // Before the profile: without a display there is nothing to measure the machine for.
-  if (!have_display()) {
-    std::fprintf(stderr, "rtsph view: no display (DISPLAY / WAYLAND_DISPLAY unset); use `rtsph render` for headless output\n");
-    return 1;
-  }
   // Provisional (the reference budget): the profile's method decides whether the GPU can run it,
   // and the budget is measured on the backend chosen, once the window's context exists.
   SimSpec spec = for_viewer(scene, opt_.sets);
@@ -366,6 +361,12 @@ int Viewer::run() {
   int w = 0, h = 0;
   if (!parse_size(opt_.size, &w, &h))
     throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", opt_.size));
+  // After the options (a bad one is named wherever it is run), before any measurement: without
+  // a display there is nothing to measure the machine for.
+  if (!have_display()) {
+    std::fprintf(stderr, "rtsph view: no display (DISPLAY / WAYLAND_DISPLAY unset); use `rtsph render` for headless output\n");
+    return 1;
+  }
 
   leave_llvmpipe_spare_cores(scene_spec_);
   switch (create_window()) {

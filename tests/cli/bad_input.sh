@@ -77,6 +77,19 @@ bad_arg negative_steps "--steps: '-5' must be zero or more" dam_break_2d --steps
 bad_arg zero_every "--every: '0' must be above zero" dam_break_2d --steps 1 --every 0 --export frames
 bad_arg word_every "--every: 'abc' is not a number" dam_break_2d --steps 1 --every abc --export frames
 [ ! -e frames ] || { echo "FAIL: a refused run wrote frames"; failures=$((failures + 1)); }
+# The viewer names a bad option before it looks for a display (it said "no display" first).
+if "$rtsph" view --help >/dev/null 2>&1; then  # a build with the viewer
+  set +e
+  env -u DISPLAY -u WAYLAND_DISPLAY "$rtsph" view dam_break_2d --size 0x0 >out.txt 2>err.txt
+  rc=$?
+  set -e
+  if [ $rc -eq 2 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -qF -- "--size 0x0: expected WxH" err.txt; then
+    echo "ok   view_size: $(cat err.txt)"
+  else
+    echo "FAIL view_size: rc $rc, stderr: $(cat err.txt)"
+    failures=$((failures + 1))
+  fi
+fi
 
 if [ $failures -ne 0 ]; then
   echo "$failures bad-input case(s) failed"

@@ -141,6 +141,15 @@ int run(const RunOptions& o) {
   }
   const fs::path fallback_base = o.export_dir.empty() ? fs::path(".") : fs::path(o.export_dir);
   if (!ckpt_dir.empty()) io::ensure_directory(ckpt_dir);
+  // Where the summary goes must exist before the run, not be found missing after it.
+  if (!o.stats_json.empty()) {
+    const fs::path dir = fs::absolute(fs::path(o.stats_json)).parent_path();
+    std::error_code ec;
+    if (fs::is_directory(fs::path(o.stats_json), ec))
+      throw io::IoError(fmt::format("cannot write '{}': it is a directory", o.stats_json));
+    if (!fs::is_directory(dir, ec))
+      throw io::IoError(fmt::format("cannot write '{}': no directory '{}'", o.stats_json, dir.string()));
+  }
 
   std::unique_ptr<io::Exporter> exporter;
   long long frame_slot = slot_of(sim->time(), o.every);  // frames up to this slot are written
@@ -327,7 +336,15 @@ int run(const RunOptions& o) {
   if (!o.quiet || o.stats_json.empty()) print_summary(summary, stdout);
   if (!o.stats_json.empty()) {
     const std::string text = summary_json(summary);
-    io::write_file_atomic(o.stats_json, [&](std::ostream& os) { os << text << "\n"; });
+    try {
+      io::write_file_atomic(o.stats_json, [&](std::ostream& os) { os << text << "\n"; });
+    } catch (const io::IoError& e) {
+      // The directory went away or the disk filled during the run: the summary still reaches
+      // the user (with --quiet it went only to that file).
+      std::fprintf(stderr, "rtsph: %s\n", e.what());
+      if (o.quiet) std::fprintf(stdout, "%s\n", text.c_str());
+      return rc == 0 ? 1 : rc;
+    }
   }
   return rc;
 }

@@ -77,6 +77,16 @@ bad_arg negative_steps "--steps: '-5' must be zero or more" dam_break_2d --steps
 bad_arg zero_every "--every: '0' must be above zero" dam_break_2d --steps 1 --every 0 --export frames
 bad_arg word_every "--every: 'abc' is not a number" dam_break_2d --steps 1 --every abc --export frames
 [ ! -e frames ] || { echo "FAIL: a refused run wrote frames"; failures=$((failures + 1)); }
+# A --stats-json with no directory to go to is found before the run (with --quiet the summary
+# goes only there, and it was lost after the whole run): one line, exit 1 (an I/O error).
+runrc dam_break_2d --until 0.005 --quiet --stats-json "$work/no_such_dir/stats.json"
+if [ $rc -eq 1 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -qF "no directory" err.txt && [ ! -s out.txt ]; then
+  echo "ok   stats_json_dir: $(cat err.txt)"
+else
+  echo "FAIL stats_json_dir: rc $rc, stderr: $(cat err.txt)"
+  failures=$((failures + 1))
+fi
+
 # The viewer names a bad option before it looks for a display (it said "no display" first).
 if "$rtsph" view --help >/dev/null 2>&1; then  # a build with the viewer
   set +e

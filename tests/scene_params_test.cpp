@@ -195,6 +195,8 @@ TEST(SceneOverride, BadOverridesAreSceneErrorsAndLeaveTheSpecUnchanged) {
   expect_parts(error_of([&] { apply_override(s, "obstacles[5].radius=1"); }), {"obstacles[5].radius", "no element 5"});
   expect_parts(error_of([&] { apply_override(s, "obstacles[x].radius=1"); }), {"obstacles[x].radius", "unknown key"});
   expect_parts(error_of([&] { apply_override(s, "fluid.spacing"); }), {"--set", "fluid.spacing", "key=value"});
+  expect_parts(error_of([&] { apply_override(s, "fluid.spacing"); }), {"(no value)"});
+  expect_parts(error_of([&] { apply_override(s, "=0.01"); }), {"--set", "=0.01", "(no key)", "key=value"});
   expect_parts(error_of([&] { apply_override(s, "fluid_blocks[0].max=9,9,9"); }), {"fluid_blocks[0].max", "inside the domain"});
   expect_parts(error_of([&] { apply_override(s, "solver.time_step.dt=0", "cli"); }), {"cli: solver.time_step.dt: 0:"});
   EXPECT_EQ(scene_to_json(s), before);

@@ -69,7 +69,8 @@ SimSpec load_scene(const std::string& name_or_path) {
 void apply_override(SimSpec& spec, const std::string& assignment, const std::string& source) {
   const auto eq = assignment.find('=');
   if (eq == std::string::npos || eq == 0)
-    throw SceneError(source, assignment, "(no value)", "expected key=value, e.g. fluid.spacing=0.01");
+    throw SceneError(source, assignment, eq == 0 ? "(no key)" : "(no value)",
+                     "expected key=value, e.g. fluid.spacing=0.01");
   const std::string key = assignment.substr(0, eq), value = assignment.substr(eq + 1);
   Json doc = scene_detail::spec_to_json(spec);
   scene_detail::set_override(doc, key, value, source);

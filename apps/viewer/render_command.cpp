@@ -88,7 +88,7 @@ int render_scene(const RenderJob& job) {
 
   int width = 0, height = 0;
   if (!parse_size(job.size, &width, &height))
-    throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", job.size));
+    throw std::invalid_argument(fmt::format("--size {}: expected WxH, each from 16 to 8192, e.g. 1280x720", job.size));
   render::RenderSettings settings = parse_render_options(job.style, job.color, job.display, job.colormap);
   settings.time_passes = job.time_passes;
   // Offline frames have no frame-rate budget: the fluid passes run at the image's resolution

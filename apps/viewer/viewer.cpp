@@ -360,7 +360,7 @@ int Viewer::run() {
   gas_defaults(spec, opt_.style_given, opt_.color_given, &settings_);
   int w = 0, h = 0;
   if (!parse_size(opt_.size, &w, &h))
-    throw std::invalid_argument(fmt::format("--size {}: expected WxH, e.g. 1280x720", opt_.size));
+    throw std::invalid_argument(fmt::format("--size {}: expected WxH, each from 16 to 8192, e.g. 1280x720", opt_.size));
   // After the options (a bad one is named wherever it is run), before any measurement: without
   // a display there is nothing to measure the machine for.
   if (!have_display()) {

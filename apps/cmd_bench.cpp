@@ -68,6 +68,7 @@ int bench(const BenchOptions& o) {
     if (!(sizes.back() >= 1 && sizes.back() <= 1e9))
       throw std::invalid_argument(fmt::format("--particles: '{}': expected counts in [1, 1e9]", item));
   }
+  if (!o.json.empty()) io::check_file_target(o.json);  // before the runs, not after them
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
   if (!o.gravity.empty())
     fmt::print("rtsph bench: 3D n = 1 polytrope, gas, self-gravity by {} (in 'forces'), {} threads, "

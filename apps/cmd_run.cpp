@@ -142,14 +142,7 @@ int run(const RunOptions& o) {
   const fs::path fallback_base = o.export_dir.empty() ? fs::path(".") : fs::path(o.export_dir);
   if (!ckpt_dir.empty()) io::ensure_directory(ckpt_dir);
   // Where the summary goes must exist before the run, not be found missing after it.
-  if (!o.stats_json.empty()) {
-    const fs::path dir = fs::absolute(fs::path(o.stats_json)).parent_path();
-    std::error_code ec;
-    if (fs::is_directory(fs::path(o.stats_json), ec))
-      throw io::IoError(fmt::format("cannot write '{}': it is a directory", o.stats_json));
-    if (!fs::is_directory(dir, ec))
-      throw io::IoError(fmt::format("cannot write '{}': no directory '{}'", o.stats_json, dir.string()));
-  }
+  if (!o.stats_json.empty()) io::check_file_target(o.stats_json);
 
   std::unique_ptr<io::Exporter> exporter;
   long long frame_slot = slot_of(sim->time(), o.every);  // frames up to this slot are written

@@ -164,4 +164,17 @@ TEST_F(AtomicFileTest, EnsureDirectoryOnAFileThrows) {
   expect_io_error(dir_ / "plain" / "sub", [&] { ensure_directory(dir_ / "plain" / "sub"); });
 }
 
+// What `rtsph run --stats-json` and `rtsph bench --json` check before they run: a file that
+// write_file_atomic could write, or an IoError naming it; nothing is created either way.
+TEST_F(AtomicFileTest, CheckFileTargetBeforeALongRun) {
+  EXPECT_NO_THROW(rtsph::io::check_file_target(dir_ / "new.json"));
+  write_file_atomic(dir_ / "old.json", std::string_view("x"));
+  EXPECT_NO_THROW(rtsph::io::check_file_target(dir_ / "old.json"));  // replaced at the end
+  expect_io_error(dir_ / "missing" / "a.json", [&] { rtsph::io::check_file_target(dir_ / "missing" / "a.json"); });
+  expect_io_error(dir_ / "old.json" / "a.json", [&] { rtsph::io::check_file_target(dir_ / "old.json" / "a.json"); });
+  expect_io_error(dir_, [&] { rtsph::io::check_file_target(dir_); });  // a directory
+  EXPECT_EQ(entries(), std::vector<std::string>{"old.json"});
+  EXPECT_EQ(slurp(dir_ / "old.json"), "x");
+}
+
 }  // namespace

@@ -172,4 +172,12 @@ void ensure_directory(const fs::path& dir) {
   }
 }
 
+void check_file_target(const fs::path& path) {
+  std::error_code ec;
+  if (fs::is_directory(path, ec)) throw IoError(fmt::format("cannot write '{}': it is a directory", path.string()));
+  const fs::path dir = fs::absolute(path, ec).parent_path();
+  if (ec || !fs::is_directory(dir, ec))
+    throw IoError(fmt::format("cannot write '{}': no directory '{}'", path.string(), dir.string()));
+}
+
 }  // namespace rtsph::io

@@ -30,4 +30,9 @@ void write_file_atomic_via_path(const std::filesystem::path& path,
 /// is not a directory.
 void ensure_directory(const std::filesystem::path& dir);
 
+/// Throws IoError unless `path` could be written by write_file_atomic: its directory exists and
+/// `path` is not a directory. For outputs written at the end of a long run (a summary, a
+/// benchmark table), checked before it starts.
+void check_file_target(const std::filesystem::path& path);
+
 }  // namespace rtsph::io

@@ -53,4 +53,12 @@ rc=$?
 set -e
 [ $rc -ne 0 ] || fail "bench --method nope exited 0"
 [ "$(wc -l <err.txt)" -eq 1 ] || { cat err.txt; fail "bench --method nope: expected one line"; }
+# A --json that cannot be written is refused before the runs (it failed after them).
+set +e
+"$rtsph" bench --particles 500 --steps 1 --json no_such_dir/b.json 2>err.txt >out.txt
+rc=$?
+set -e
+[ $rc -eq 1 ] || fail "bench --json no_such_dir/b.json exited $rc, expected 1"
+grep -q "no directory" err.txt || { cat err.txt; fail "bench --json: no 'no directory' in the message"; }
+[ ! -s out.txt ] || { cat out.txt; fail "bench --json: ran before refusing"; }
 echo "bench test passed"

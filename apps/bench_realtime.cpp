@@ -57,7 +57,6 @@ Probe probe(const BenchOptions& o, double n, int threads) {
 }  // namespace
 
 int bench_realtime(const BenchOptions& o) {
-  if (!o.json.empty()) io::check_file_target(o.json);  // before minutes of probes, not after them
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
   fmt::print("rtsph bench --realtime: {}D dam break, {}, {} threads, backend {}, first {} s simulated\n",
              o.dim, o.method, threads, o.backend, o.window_s);

@@ -68,7 +68,6 @@ int bench(const BenchOptions& o) {
     if (!(sizes.back() >= 1 && sizes.back() <= 1e9))
       throw std::invalid_argument(fmt::format("--particles: '{}': expected counts in [1, 1e9]", item));
   }
-  if (!o.json.empty()) io::check_file_target(o.json);  // before the runs, not after them
   const int threads = o.threads > 0 ? o.threads : omp_get_max_threads();
   if (!o.gravity.empty())
     fmt::print("rtsph bench: 3D n = 1 polytrope, gas, self-gravity by {} (in 'forces'), {} threads, "
@@ -172,6 +171,7 @@ void add_bench_command(CLI::App& app, int& exit_code) {
       if (!o->sets.empty() && !o->gravity.empty())
         throw std::invalid_argument("--set applies to the dam break, not to --gravity");
       if (!o->sets.empty()) (void)dam_break_with(o->dim, 1000, o->method, o->sets);  // bad --set: one line, before any output
+      if (!o->json.empty()) io::check_file_target(o->json);  // before the runs (minutes with --realtime), not after
       return o->realtime ? bench_realtime(*o) : bench(*o);
     });
   });

@@ -5,26 +5,20 @@
 
 namespace rtsph::app {
 
-/// A number above zero, or at least zero, with a message a person can read: CLI11's
-/// PositiveNumber and NonNegativeNumber print their range to the last digit of DBL_MAX.
-inline CLI::Validator positive_number() {
+/// A number above zero (or, with zero_ok, at least zero), with a message a person can read:
+/// CLI11's PositiveNumber and NonNegativeNumber print their range to the last digit of DBL_MAX.
+inline CLI::Validator number_from_zero(bool zero_ok) {
   return CLI::Validator(
-      [](std::string& in) -> std::string {
+      [zero_ok](std::string& in) -> std::string {
         double v = 0;
         if (!CLI::detail::lexical_cast(in, v)) return "'" + in + "' is not a number";
-        return v > 0 ? std::string() : "'" + in + "' must be above zero";
+        if (zero_ok ? v >= 0 : v > 0) return {};
+        return "'" + in + (zero_ok ? "' must be zero or more" : "' must be above zero");
       },
-      "POSITIVE");
+      zero_ok ? "NONNEGATIVE" : "POSITIVE");
 }
-inline CLI::Validator non_negative_number() {
-  return CLI::Validator(
-      [](std::string& in) -> std::string {
-        double v = 0;
-        if (!CLI::detail::lexical_cast(in, v)) return "'" + in + "' is not a number";
-        return v >= 0 ? std::string() : "'" + in + "' must be zero or more";
-      },
-      "NONNEGATIVE");
-}
+inline CLI::Validator positive_number() { return number_from_zero(false); }
+inline CLI::Validator non_negative_number() { return number_from_zero(true); }
 
 void add_run_command(CLI::App& app, int& exit_code);
 void add_bench_command(CLI::App& app, int& exit_code);

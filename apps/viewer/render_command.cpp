@@ -40,6 +40,11 @@ bool parse_size(const std::string& text, int* w, int* h) {
   return true;
 }
 
+void require_size(const std::string& text, int* w, int* h) {
+  if (!parse_size(text, w, h))
+    throw std::invalid_argument(fmt::format("--size {}: expected WxH, each from 16 to 8192, e.g. 1280x720", text));
+}
+
 namespace {
 bool ends_with(const std::string& s, const std::string& suffix) {
   if (s.size() < suffix.size()) return false;
@@ -87,8 +92,7 @@ int render_scene(const RenderJob& job) {
   for (const auto& s : job.sets) apply_override(spec, s);
 
   int width = 0, height = 0;
-  if (!parse_size(job.size, &width, &height))
-    throw std::invalid_argument(fmt::format("--size {}: expected WxH, each from 16 to 8192, e.g. 1280x720", job.size));
+  require_size(job.size, &width, &height);
   render::RenderSettings settings = parse_render_options(job.style, job.color, job.display, job.colormap);
   settings.time_passes = job.time_passes;
   // Offline frames have no frame-rate budget: the fluid passes run at the image's resolution

@@ -61,5 +61,7 @@ inline void frame_scene(const SimSpec& spec, render::Camera& cam, float aspect) 
 
 /// "1280x720" → 1280, 720; false if malformed or out of [16, 8192].
 bool parse_size(const std::string& text, int* w, int* h);
+/// parse_size, or std::invalid_argument naming --size and its range.
+void require_size(const std::string& text, int* w, int* h);
 
 }  // namespace rtsph::app

@@ -359,8 +359,7 @@ int Viewer::run() {
   settings_.time_passes = opt_.time_passes;
   gas_defaults(spec, opt_.style_given, opt_.color_given, &settings_);
   int w = 0, h = 0;
-  if (!parse_size(opt_.size, &w, &h))
-    throw std::invalid_argument(fmt::format("--size {}: expected WxH, each from 16 to 8192, e.g. 1280x720", opt_.size));
+  require_size(opt_.size, &w, &h);
   // After the options (a bad one is named wherever it is run), before any measurement: without
   // a display there is nothing to measure the machine for.
   if (!have_display()) {

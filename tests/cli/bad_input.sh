@@ -58,47 +58,37 @@ else
   failures=$((failures + 1))
 fi
 
-# Bad numbers on the command line: one readable line, exit 2, nothing run. A negative --until
-# or --steps ran to the scene's end before (the default's sentinel), and CLI11's own range
-# message printed the largest double to its last digit.
-bad_arg() {  # bad_arg NAME FRAGMENT ARGS...
-  local name=$1 fragment=$2
-  shift 2
-  runrc "$@"
-  if [ $rc -eq 2 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -qF -- "$fragment" err.txt && [ "$(wc -c <err.txt)" -lt 200 ]; then
+# Bad arguments on the command line: one readable line, the exit code, nothing run. A negative
+# --until or --steps ran to the scene's end before (the default's sentinel), and CLI11's own
+# range message printed the largest double to its last digit.
+# one_line NAME RC FRAGMENT COMMAND...: `rtsph COMMAND...` exits RC with one short stderr line
+# holding FRAGMENT and prints nothing on stdout.
+one_line() {
+  local name=$1 want=$2 fragment=$3
+  shift 3
+  set +e
+  "$rtsph" "$@" >out.txt 2>err.txt
+  rc=$?
+  set -e
+  if [ $rc -eq "$want" ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -qF -- "$fragment" err.txt \
+     && [ "$(wc -c <err.txt)" -lt 200 ] && [ ! -s out.txt ]; then
     echo "ok   $name: $(cat err.txt)"
   else
-    echo "FAIL $name: rc $rc, stderr: $(cat err.txt)"
+    echo "FAIL $name: rc $rc (expected $want), stderr: $(cat err.txt)"
     failures=$((failures + 1))
   fi
 }
-bad_arg negative_until "--until: '-1' must be zero or more" dam_break_2d --until -1
-bad_arg negative_steps "--steps: '-5' must be zero or more" dam_break_2d --steps -5
-bad_arg zero_every "--every: '0' must be above zero" dam_break_2d --steps 1 --every 0 --export frames
-bad_arg word_every "--every: 'abc' is not a number" dam_break_2d --steps 1 --every abc --export frames
+one_line negative_until 2 "--until: '-1' must be zero or more" run dam_break_2d --until -1
+one_line negative_steps 2 "--steps: '-5' must be zero or more" run dam_break_2d --steps -5
+one_line zero_every 2 "--every: '0' must be above zero" run dam_break_2d --steps 1 --every 0 --export frames
+one_line word_every 2 "--every: 'abc' is not a number" run dam_break_2d --steps 1 --every abc --export frames
 [ ! -e frames ] || { echo "FAIL: a refused run wrote frames"; failures=$((failures + 1)); }
 # A --stats-json with no directory to go to is found before the run (with --quiet the summary
-# goes only there, and it was lost after the whole run): one line, exit 1 (an I/O error).
-runrc dam_break_2d --until 0.005 --quiet --stats-json "$work/no_such_dir/stats.json"
-if [ $rc -eq 1 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -qF "no directory" err.txt && [ ! -s out.txt ]; then
-  echo "ok   stats_json_dir: $(cat err.txt)"
-else
-  echo "FAIL stats_json_dir: rc $rc, stderr: $(cat err.txt)"
-  failures=$((failures + 1))
-fi
-
+# goes only there, and it was lost after the whole run): exit 1, an I/O error.
+one_line stats_json_dir 1 "no directory" run dam_break_2d --until 0.005 --quiet --stats-json "$work/no_such_dir/stats.json"
 # The viewer names a bad option before it looks for a display (it said "no display" first).
 if "$rtsph" view --help >/dev/null 2>&1; then  # a build with the viewer
-  set +e
-  env -u DISPLAY -u WAYLAND_DISPLAY "$rtsph" view dam_break_2d --size 0x0 >out.txt 2>err.txt
-  rc=$?
-  set -e
-  if [ $rc -eq 2 ] && [ "$(wc -l <err.txt)" -eq 1 ] && grep -qF -- "--size 0x0: expected WxH" err.txt; then
-    echo "ok   view_size: $(cat err.txt)"
-  else
-    echo "FAIL view_size: rc $rc, stderr: $(cat err.txt)"
-    failures=$((failures + 1))
-  fi
+  DISPLAY= WAYLAND_DISPLAY= one_line view_size 2 "--size 0x0: expected WxH" view dam_break_2d --size 0x0
 fi
 
 if [ $failures -ne 0 ]; then

@@ -161,6 +161,26 @@ def test_ball_blocks_fill_the_ball(dim):
     assert abs(ellipse * s * s / (math.pi * R * R) - 1) < 0.03  # semi-axes 1.1 R and R/1.1
 
 
+# The static drops' lattice draws: draw 0 is the centred lattice, the others shift it under the
+# ball by distinct fractions of a spacing, and every draw still fills the ball.
+@pytest.mark.parametrize("dim", [2, 3])
+def test_lattice_draws_shift_the_lattice_and_fill_the_ball(dim):
+    import math
+    from rtsph.validate.drops import _ball_blocks, _draw_offset
+    s, R = 0.005, 0.05
+    assert _draw_offset(0, dim, s) == [0.0] * dim
+    offsets = [tuple(_draw_offset(k, dim, s)) for k in range(32)]
+    assert len(set(offsets)) == 32 and all(0 <= v < s for o in offsets for v in o)
+    volume = math.pi * R * R if dim == 2 else 4 / 3 * math.pi * R ** 3
+    for o in offsets[1:4]:
+        blocks = _ball_blocks(dim, R, s, offset=o)
+        count = sum(round((b["max"][0] - b["min"][0]) / s) for b in blocks)
+        assert abs(count * s ** dim / volume - 1) < 0.02
+        for b in blocks:  # every block on the shifted lattice: its corners at k·s + offset
+            for a in range(dim):
+                assert abs((b["min"][a] - o[a]) / s - round((b["min"][a] - o[a]) / s)) < 1e-9
+
+
 @pytest.mark.parametrize("dim", [2, 3])
 def test_virial_pressure_of_a_uniform_lattice_is_the_eos_pressure(dim):
     import numpy as np

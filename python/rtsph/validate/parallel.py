@@ -23,8 +23,8 @@ from .cases import Result, run_case
 # method): they run in one task, after it.
 _AFTER = {"oscillating_droplet_2d": "static_droplet_2d"}
 # Tasks start longest first, so that the last one to finish is a short one (quick level, two
-# cores, 2026-11-26: SPHERIC Test 2's WCSPH run alone is 40% of the suite).
-_LONG_FIRST = ("spheric_test2_3d", "static_droplet_3d", "taylor_green_2d")
+# cores: the 3D drops with their 40 draws since 2026-11-28, SPHERIC Test 2, the 2D drops).
+_LONG_FIRST = ("static_droplet_3d", "spheric_test2_3d", "static_droplet_2d", "taylor_green_2d")
 
 
 class _ColorOf:

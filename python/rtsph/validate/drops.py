@@ -217,22 +217,29 @@ def static_droplet(dim: int):
                           f"{', '.join(f'{j:.3g}' for j in cal['jumps'])} Pa; R2 {', '.join(f'{j:.3g}' for j in jumps2)} Pa. EOS pressure alone: "
                           f"{cal['dp_eos']:.4g} Pa at R1, {dp2_eos:.4g} Pa at R2 (the cohesion's bulk tension "
                           f"is the rest). Pressure = virial of the SPH pressure force + virial of the cohesion (Irving–Kirkwood)."),
-                   series={"t_s": series2["t_s"], "p_total_r2_pa": series2["p_total_pa"],
-                           "p_eos_r2_pa": series2["p_eos_pa"],
-                           "p_total_r1_pa": cal["series"]["p_total_pa"][:len(series2["t_s"])]},
+                   series={"t_s": series2["t_s"], "p_total_r2_draw0_pa": series2["p_total_pa"],
+                           "p_eos_r2_draw0_pa": series2["p_eos_pa"],
+                           "p_total_r1_draw0_pa": cal["series"]["p_total_pa"][:len(series2["t_s"])]},
                    extra={"sigma": sigma, "gamma": DROPLET_GAMMA, "dp_r1": cal["dp"], "dp_r2": dp2,
                           "dp_r2_predicted": predicted, "dp_eos_r1": cal["dp_eos"], "dp_eos_r2": dp2_eos,
                           "dp_r1_sem": cal["dp_sem"], "dp_r2_sem": sem2, "dp_r1_draws": cal["jumps"],
                           "dp_r2_draws": jumps2, "error_sem": err_sem})
 
         def plot(ax, res):
-            ax.plot(res.series["t_s"], res.series["p_total_r1_pa"], ".-", ms=3, label=f"{res.method}: R1, draw 0 (calibration)")
-            ax.plot(res.series["t_s"], res.series["p_total_r2_pa"], ".-", ms=3, label=f"{res.method}: R2 = 2·R1, draw 0")
-            ax.axhline(res.extra["dp_r1"], ls=":", lw=0.8, color="C0", label="R1, mean of the draws")
-            ax.axhline(res.extra["dp_r2"], ls=":", lw=0.8, color="C1", label="R2, mean of the draws")
-            ax.axhline(res.extra["dp_r2_predicted"], ls="--", lw=0.8, color="k", label="predicted at R2")
-            ax.set_xlabel("t (s)")
-            ax.set_ylabel("core pressure, EOS + cohesion virial (Pa)")
+            # Each draw's jump (dots), the means with their standard errors, and Laplace's curve
+            # from the mean at R1 (dashed) with its prediction at R2 (cross). Methods side by side.
+            x = res.extra
+            dx = {"wcsph": -0.04, "pbf": 0.0, "dfsph": 0.04}.get(res.method, 0.0) * R1
+            line = ax.errorbar([R1 + dx, R2 + dx], [x["dp_r1"], x["dp_r2"]], yerr=[x["dp_r1_sem"], x["dp_r2_sem"]],
+                               fmt="o", ms=5, capsize=3, label=f"{res.method}: mean ± standard error")
+            c = line[0].get_color()
+            ax.plot([R1 + dx] * len(x["dp_r1_draws"]), x["dp_r1_draws"], ".", ms=3, alpha=0.4, color=c)
+            ax.plot([R2 + dx] * len(x["dp_r2_draws"]), x["dp_r2_draws"], ".", ms=3, alpha=0.4, color=c)
+            radii = np.linspace(R1, R2, 30)
+            ax.plot(radii + dx, x["dp_r1"] * R1 / radii, "--", lw=0.8, color=c)
+            ax.plot([R2 + dx], [x["dp_r2_predicted"]], "x", ms=9, color=c, label=f"{res.method}: Laplace from R1")
+            ax.set_xlabel("drop radius R (m)")
+            ax.set_ylabel("core pressure jump, EOS + cohesion virial (Pa)")
         r.plot = plot
         return _finish(r)
     return run

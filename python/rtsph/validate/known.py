@@ -45,7 +45,7 @@ class Known:
 
 _ST2 = ("at h = spacing the 2D drop's core carries a stress that does not fall with R: over lattice draws the "
         "jump fits σ/R + p₀ with p₀ = 9.2 ± 1.0 Pa (session 30), so R2's mean jump is about R1's. The 3D "
-        "drops, measured the same way, pass")
+        "drops, measured the same way, pass at the quick level (5 and 10 spacings)")
 _OSC = "the drop locks into an ellipse (Akinci's cohesion at h = spacing): no liquid oscillation to time"
 _SPH = ("H1's bore from the left wall comes late and spread out at 0.04 m (quick); 0.03 and 0.0275 m are no "
         "better (session 28, before the closing sweep: PBF 3.47 and 3.43 cm, DFSPH 3.46 and 3.29 cm); 0.02 m "

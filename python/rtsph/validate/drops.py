@@ -160,12 +160,10 @@ def _static_droplet_draw(method, dim, R, level, threads, draw):
          "p_cohesion_virial_pa": list(P_vc), "p_total_pa": list(total)}
 
 
-def _static_droplet_run(method, dim, R, level, threads):
-    """The jump at radius R: the mean over DROPLET_DRAWS[dim] lattice draws (R1's count at R1,
-    R2's otherwise). Returns the particles
-    of all draws, the mean jump, the mean EOS pressure, the standard error of the mean jump, the
-    per-draw jumps, and draw 0's time series (for the plot)."""
-    draws = DROPLET_DRAWS[level][dim][0 if R == DROPLET_R1 else 1]
+def _static_droplet_run(method, dim, R, level, threads, draws):
+    """The jump at radius R: the mean over `draws` lattice draws. Returns the particles of all
+    draws, the mean jump, the mean EOS pressure, the standard error of the mean jump, the per-draw
+    jumps, and draw 0's time series (for the plot)."""
     runs = [_static_droplet_draw(method, dim, R, level, threads, k) for k in range(draws)]
     jumps = np.array([r[1] for r in runs])
     sem = float(np.std(jumps, ddof=1) / math.sqrt(len(jumps))) if len(jumps) > 1 else float("nan")
@@ -177,7 +175,8 @@ def calibrate_sigma(method: str, dim: int, level: str, threads: int) -> dict:
     """σ(γ) from the static droplet at R1 (Laplace), once per method, dimension and level."""
     key = (method, dim, level, threads)
     if key not in _SIGMA_CACHE:
-        particles, dp, dp_eos, sem, jumps, series = _static_droplet_run(method, dim, DROPLET_R1, level, threads)
+        particles, dp, dp_eos, sem, jumps, series = _static_droplet_run(method, dim, DROPLET_R1, level, threads,
+                                                                      DROPLET_DRAWS[level][dim][0])
         factor = 1.0 if dim == 2 else 2.0
         _SIGMA_CACHE[key] = {"sigma": dp * DROPLET_R1 / factor, "dp": dp, "dp_eos": dp_eos, "dp_sem": sem,
                              "jumps": jumps, "series": series, "particles": particles}
@@ -191,7 +190,8 @@ def static_droplet(dim: int):
         factor = 1.0 if dim == 2 else 2.0
         t0 = time.perf_counter()
         cal = calibrate_sigma(method, dim, level, threads)
-        particles2, dp2, dp2_eos, sem2, jumps2, series2 = _static_droplet_run(method, dim, R2, level, threads)
+        particles2, dp2, dp2_eos, sem2, jumps2, series2 = _static_droplet_run(method, dim, R2, level, threads,
+                                                                       DROPLET_DRAWS[level][dim][1])
         sigma = cal["sigma"]
         predicted = factor * sigma / R2
         err = abs(dp2 / predicted - 1) if np.isfinite(dp2) and predicted != 0 else float("inf")

@@ -28,7 +28,33 @@ from ._common import Result, _finish, _simulation
 DROPLET_GAMMA = 1.0          # Akinci's γ for every droplet case
 DROPLET_R1 = 0.05            # m: calibration radius (2D and 3D); the prediction is at 2·R1
 DROPLET_C0 = 10.0            # m/s
-DROPLET_H = 1.0            # h / spacing (docs/validation.md: 1.3 measured too)
+# The kernel and h / spacing. Akinci's cohesion acts over the SPH kernel's support H. With the
+# cubic spline at h = spacing, H is two spacings: the cohesion pulls hardest at the lattice's own
+# spacing and the 2D drop locks into a crystal whose core stress does not fall with R (a 2D jump
+# that fits σ/R + 9 Pa, an oscillating drop that stops as an ellipse; docs/validation.md). With
+# Wendland C2 at h = 2 spacings (H = 4 spacings, about 50 neighbours in 2D; no pairing instability,
+# Dehnen & Aly 2012, as the Taylor–Green case uses) the drop is a liquid, its jumps spread 2-5%
+# draw to draw instead of 15-30%, and Laplace's law appears as the drop grows against H: R2's
+# jump over R1's reads 0.435 at R1 = 2.5 H (quick) and 0.462 at 5 H (full) against Laplace's 0.5.
+# 3D keeps the cubic spline at h = spacing: its drops are 5-13 spacings across, 1.25-3.3 H at
+# H = 4 spacings (there R2/R1 read 0.87), and a 3D drop of 20 spacings at 270 neighbours is beyond
+# these cores. PBF keeps it too: its position solve with the wide kernel and the cohesion diverges
+# (8 and 32 substeps: particles at 50 m/s within 0.9 s, session 31).
+DROPLET_KERNEL = {2: ("wendland_c2", 2.0), 3: ("cubic_spline", 1.0)}
+DROPLET_KERNEL_PBF = ("cubic_spline", 1.0)
+# DFSPH's pressure is its density solve's multiplier, known to the solve's tolerance, and the
+# jump to be measured is 3-10% of the core's pressure (the rest balances the cohesion's bulk
+# tension). At the default 0.1% the quick 2D drop's core pressure cycled between 630 and 1,340 Pa
+# (Wendland, h = 2s; the jump is 50-130 Pa); at 0.01% the full level's still wandered over
+# 250-550 Pa; at 0.001% it held 390-394 Pa (session 31). The solve then takes about 1.5 times as
+# long per drop.
+DROPLET_DFSPH_TOLERANCE = 1e-5
+
+
+def _droplet_kernel(method: str, dim: int):
+    return DROPLET_KERNEL_PBF if method == "pbf" else DROPLET_KERNEL[dim]
+
+
 DROPLET_NU = {2: 0.01, 3: 0.02}  # m²/s: damps the static drops to rest (no effect on the jump)
 DROPLET_LEVELS = {           # spacing (m) and simulated time (s)
     2: {"quick": (0.005, 3.0), "full": (0.0025, 3.0)},
@@ -37,15 +63,34 @@ DROPLET_LEVELS = {           # spacing (m) and simulated time (s)
 LAPLACE_TOL = 0.10
 # Draws per radius: each static drop is cut from the lattice shifted under the circle by another
 # fraction of a spacing (draw 0: the lattice centred on the drop), and the jump at each radius is
-# the mean over the draws. One draw is one frozen arrangement: over 16 draws at the quick 2D level
-# (WCSPH) the jump at R1 read 17 ± 4 Pa and the prediction's error ranged from 8% to 114%
-# (median 48%), so a single drop's pass or fail was the lattice's accident (docs/validation.md,
-# "One drop is one draw of its lattice"). The small drop is cheap and noisy (its jump's draw-to-
-# draw spread is 15-30%), the large one dear and quiet (3-10%): more draws at R1 than at R2. The
-# full level's drops cost 4 (3D) to 8 (2D) times the quick level's each: fewer draws there, and a
-# wider uncertainty (reported with the error).
-DROPLET_DRAWS = {"quick": {2: (32, 16), 3: (32, 8)},  # (at R1, at R2)
-                 "full": {2: (8, 4), 3: (16, 4)}}
+# the mean over the draws. With the cubic spline at h = spacing one draw is one frozen
+# arrangement: over 16 draws at the quick 2D level (WCSPH) the jump at R1 read 17 ± 4 Pa and the
+# prediction's error ranged from 8% to 114% (median 48%), so a single drop's pass or fail was the
+# lattice's accident (docs/validation.md, "One drop is one draw of its lattice"). There the small
+# drop is cheap and noisy (its jump's draw-to-draw spread is 15-30%), the large one dear and quiet
+# (3-10%): more draws at R1 than at R2. The full level's drops cost 4 (3D) to 8 (2D) times the
+# quick level's each: fewer draws there, and a wider uncertainty (reported with the error). The
+# liquid 2D drops (Wendland C2, h = 2 spacings) spread 2-5% per draw: fewer draws suffice.
+DROPLET_DRAWS = {"quick": {2: (8, 4), 3: (32, 8)},  # (at R1, at R2)
+                 "full": {2: (4, 2), 3: (16, 4)}}
+DROPLET_DRAWS_LOCKED_2D = {"quick": (32, 16), "full": (8, 4)}  # the cubic spline at h = spacing in 2D (PBF)
+
+
+def _kernel_text(method: str, dim: int) -> str:
+    kernel, h = _droplet_kernel(method, dim)
+    text = f"{kernel.replace('_', ' ')} at h = {h:g} spacings"
+    if method == "dfsph" and kernel == "wendland_c2":
+        text += f", density solved to {DROPLET_DFSPH_TOLERANCE:g}"
+    return text
+
+
+def _draws(method: str, dim: int, level: str):
+    """(draws at R1, draws at R2) for this method's drops."""
+    if dim == 2 and _droplet_kernel(method, dim)[0] == "cubic_spline":
+        return DROPLET_DRAWS_LOCKED_2D[level]
+    return DROPLET_DRAWS[level][dim]
+
+
 _SIGMA_CACHE: Dict[Tuple[str, int, str, int], dict] = {}
 
 
@@ -87,15 +132,20 @@ def _cohesion_kernel(r, H, dim):
     return c * np.where(r > H, 0.0, np.where(2 * r > H, q, 2 * q - H ** 6 / 64))
 
 
-def _cubic_grad_factor(r, h, dim):
-    """G with ∇W = G·xᵢⱼ for rtsph's cubic spline (src/core/kernels.h), support 2h."""
-    sig = 10 / (7 * math.pi) if dim == 2 else 1 / math.pi
+def _grad_factor(r, h, dim, kernel="cubic_spline"):
+    """G with ∇W = G·xᵢⱼ for rtsph's cubic spline or Wendland C2 (src/core/kernels.h), support 2h."""
     q = r / h
+    if kernel == "wendland_c2":  # w'(q)/q = −5 (1 − q/2)³
+        sig = 7 / (4 * math.pi) if dim == 2 else 21 / (16 * math.pi)
+        return sig / h ** (dim + 2) * -5.0 * np.maximum(1 - 0.5 * q, 0) ** 3
+    if kernel != "cubic_spline":
+        raise ValueError(f"no virial measure for kernel {kernel!r}")
+    sig = 10 / (7 * math.pi) if dim == 2 else 1 / math.pi
     a, b = np.maximum(2 - q, 0), np.maximum(1 - q, 0)
     return sig / h ** (dim + 1) * (-0.75 * a * a + 3 * b * b) / np.maximum(r, 1e-30)
 
 
-def _virial_pressures(x, rho, p, idx, h, mass, gamma, dim, rho0=1000.0):
+def _virial_pressures(x, rho, p, idx, h, mass, gamma, dim, rho0=1000.0, kernel="cubic_spline"):
     """Mean over particles idx of the Irving–Kirkwood pressure (ρᵢ/2d) Σⱼ xᵢⱼ·Fᵢⱼ/mᵢ of two pair
     forces (Pa): the SPH pressure force Fᵢⱼ/m = −m (pᵢ/ρᵢ² + pⱼ/ρⱼ²) ∇Wᵢⱼ, and Akinci's cohesion
     Fᵢⱼ/m = −γ m Kᵢⱼ C(r) x̂ᵢⱼ. In a uniform bulk the first is the EOS pressure to the accuracy of
@@ -109,7 +159,7 @@ def _virial_pressures(x, rho, p, idx, h, mass, gamma, dim, rho0=1000.0):
         nb = (r > 0) & (r < H)
         rn = r[nb]
         K = 2 * rho0 / (rho[i] + rho[nb])
-        vp.append((rho[i] / (2 * dim)) * np.sum(-mass * (P[i] + P[nb]) * _cubic_grad_factor(rn, h, dim) * rn * rn))
+        vp.append((rho[i] / (2 * dim)) * np.sum(-mass * (P[i] + P[nb]) * _grad_factor(rn, h, dim, kernel) * rn * rn))
         vc.append(-(rho[i] * gamma * mass / (2 * dim)) * np.sum(K * _cohesion_kernel(rn, H, dim) * rn))
     if not vp:
         return float("nan"), float("nan")
@@ -119,13 +169,18 @@ def _virial_pressures(x, rho, p, idx, h, mass, gamma, dim, rho0=1000.0):
 def _droplet_scene(method, dim, R, s, nu, name, stretch=1.0, offset=None):
     L = stretch * R + 0.1
     # Explicit surface tension needs Δt below the capillary limit √(ρ s³/(2πσ)) (Brackbill et al.
-    # 1992): 4 ms at σ ≈ 1.2 N/m and s = 5 mm. WCSPH's and DFSPH's steps are far below it; PBF's
-    # default 1/240 s is at it, and its drop sheds particles at 1.5 m/s. 8 substeps: 2 ms.
-    pbf = {"pbf": {"substeps": 8}} if method == "pbf" else {}
+    # 1992): 4 ms at σ ≈ 1.2 N/m and s = 5 mm (the cubic spline at h = s), 1.9 ms at the 5.5 N/m
+    # the same γ gives with Wendland at h = 2s. WCSPH's steps are far below it (0.4 ms), DFSPH's
+    # (1.25 ms) below; PBF's default 1/240 s is at it, and its drop sheds particles at 1.5 m/s.
+    # 8 substeps: 2 ms.
+    kernel, h = _droplet_kernel(method, dim)
+    extra = {"pbf": {"substeps": 8}} if method == "pbf" else {}
+    if method == "dfsph" and kernel == "wendland_c2":
+        extra = {"dfsph": {"max_density_error": DROPLET_DFSPH_TOLERANCE}}
     return rtsph.scene({
         "name": name, "dimension": dim, "domain": {"min": [-L] * dim, "max": [L] * dim}, "gravity": [0.0] * dim,
         "fluid": {"spacing": s, "viscosity": nu, "surface_tension": DROPLET_GAMMA},
-        "solver": {"method": method, "speed_of_sound": DROPLET_C0, "smoothing_ratio": DROPLET_H, **pbf},
+        "solver": {"method": method, "speed_of_sound": DROPLET_C0, "kernel": kernel, "smoothing_ratio": h, **extra},
         "fluid_blocks": _ball_blocks(dim, R, s, stretch, offset)})
 
 
@@ -136,6 +191,7 @@ def _static_droplet_draw(method, dim, R, level, threads, draw):
     sim = _simulation(_droplet_scene(method, dim, R, s, DROPLET_NU[dim], f"validate_static_droplet_{dim}d",
                                      offset=_draw_offset(draw, dim, s)), threads)
     h = sim.stats["h"]
+    kernel = _droplet_kernel(method, dim)[0]
     mass = 1000.0 * s ** dim
     T, P_eos, P_vp, P_vc = [], [], [], []
 
@@ -147,7 +203,8 @@ def _static_droplet_draw(method, dim, R, level, threads, draw):
         T.append(sm.time)
         P_eos.append(float(p[core].mean()) if len(core) else float("nan"))
         late = sm.time >= t_end * 2 / 3 - 1e-9
-        vp, vc = _virial_pressures(x, sm.density.astype(np.float64), p, core, h, mass, DROPLET_GAMMA, dim) \
+        vp, vc = _virial_pressures(x, sm.density.astype(np.float64), p, core, h, mass, DROPLET_GAMMA, dim,
+                                   kernel=kernel) \
             if late else (float("nan"), float("nan"))
         P_vp.append(vp)
         P_vc.append(vc)
@@ -176,7 +233,7 @@ def calibrate_sigma(method: str, dim: int, level: str, threads: int) -> dict:
     key = (method, dim, level, threads)
     if key not in _SIGMA_CACHE:
         particles, dp, dp_eos, sem, jumps, series = _static_droplet_run(method, dim, DROPLET_R1, level, threads,
-                                                                      DROPLET_DRAWS[level][dim][0])
+                                                                      _draws(method, dim, level)[0])
         factor = 1.0 if dim == 2 else 2.0
         _SIGMA_CACHE[key] = {"sigma": dp * DROPLET_R1 / factor, "dp": dp, "dp_eos": dp_eos, "dp_sem": sem,
                              "jumps": jumps, "series": series, "particles": particles}
@@ -191,7 +248,7 @@ def static_droplet(dim: int):
         t0 = time.perf_counter()
         cal = calibrate_sigma(method, dim, level, threads)
         particles2, dp2, dp2_eos, sem2, jumps2, series2 = _static_droplet_run(method, dim, R2, level, threads,
-                                                                       DROPLET_DRAWS[level][dim][1])
+                                                                       _draws(method, dim, level)[1])
         sigma = cal["sigma"]
         predicted = factor * sigma / R2
         err = abs(dp2 / predicted - 1) if np.isfinite(dp2) and predicted != 0 else float("inf")
@@ -205,10 +262,11 @@ def static_droplet(dim: int):
                    metric=f"relative error of the predicted pressure jump at R2 = 2·R1 (Laplace {law}, σ calibrated at R1)",
                    error=err, tolerance=LAPLACE_TOL, particles=cal["particles"] + particles2,
                    wall_s=time.perf_counter() - t0,
-                   setup=(f"{dim}D drop in zero gravity, R1 = {R1} m, R2 = {R2} m, spacing {s} m, γ = {DROPLET_GAMMA}, "
+                   setup=(f"{dim}D drop in zero gravity, R1 = {R1} m, R2 = {R2} m, spacing {s} m, {_kernel_text(method, dim)}, "
+                          f"γ = {DROPLET_GAMMA}, "
                           f"c0 = {DROPLET_C0} m/s, ν = {DROPLET_NU[dim]} m²/s, {t_end} s, jump averaged over the "
-                          f"last third; core r < R/2; each jump the mean of {DROPLET_DRAWS[level][dim][0]} (R1) or "
-                          f"{DROPLET_DRAWS[level][dim][1]} (R2) drops cut from the lattice shifted under the circle"),
+                          f"last third; core r < R/2; each jump the mean of {_draws(method, dim, level)[0]} (R1) or "
+                          f"{_draws(method, dim, level)[1]} (R2) drops cut from the lattice shifted under the circle"),
                    reference=f"Laplace: Δp = {law}; σ(γ) calibrated once at R1, the jump at R2 predicted",
                    notes=(f"σ(γ = {DROPLET_GAMMA}) = {sigma:.4g} N/m{'' if dim == 3 else ' (per unit length)'} "
                           f"from Δp(R1) = {cal['dp']:.4g} Pa (± {cal['dp_sem']:.2g}, standard error over the draws); "
@@ -304,7 +362,7 @@ def oscillating_droplet(method: str, level: str, threads: int) -> Result:
                metric="worst of: period error / 15%, (1 − circularity at rest) / 0.02",
                error=worst, tolerance=1.0, particles=sim.particle_count, wall_s=time.perf_counter() - t0,
                setup=(f"2D drop R = {R} m stretched to semi-axes {OSC_STRETCH}·R and R/{OSC_STRETCH}, zero gravity, "
-                      f"spacing {s} m, γ = {DROPLET_GAMMA}, ν = {OSC_NU} m²/s for {t_osc} s, then ν = "
+                      f"spacing {s} m, {_kernel_text(method, 2)}, γ = {DROPLET_GAMMA}, ν = {OSC_NU} m²/s for {t_osc} s, then ν = "
                       f"{DROPLET_NU[2]} m²/s for {OSC_REST_S} s to rest"),
                reference="Rayleigh's mode 2: ω² = 6σ/(ρR³), σ from the static 2D droplet's calibration",
                notes=(f"σ = {sigma:.4g} N/m (static droplet at R = {R} m): predicted period {period_ref:.4g} s, "

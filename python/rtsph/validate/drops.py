@@ -39,7 +39,8 @@ DROPLET_C0 = 10.0            # m/s
 # 3D keeps the cubic spline at h = spacing: its drops are 5-13 spacings across, 1.25-3.3 H at
 # H = 4 spacings (there R2/R1 read 0.87), and a 3D drop of 20 spacings at 270 neighbours is beyond
 # these cores. PBF keeps it too: its position solve with the wide kernel and the cohesion diverges
-# (8 and 32 substeps: particles at 50 m/s within 0.9 s, session 31).
+# (8 and 32 substeps: particles at 50 m/s within 0.9 s, session 31), and at its stable Jacobi
+# weight (solver.pbf.omega 0) the drop never comes to rest (R1's jump −20 to 98 Pa over 8 draws).
 DROPLET_KERNEL = {2: ("wendland_c2", 2.0), 3: ("cubic_spline", 1.0)}
 DROPLET_KERNEL_PBF = ("cubic_spline", 1.0)
 # DFSPH's pressure is its density solve's multiplier, known to the solve's tolerance, and the

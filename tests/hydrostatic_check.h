@@ -80,14 +80,18 @@ inline void settles_to_hydrostatic(int dim, double width, double height, double 
   // reads 1.1 J.
   EXPECT_LT(ke_late, 0.25 * ke_early);
   EXPECT_EQ(st.particles_put_back, 0u);
-  // No particle leaves the fluid region: the column only compresses slightly.
+  // No particle leaves the fluid region: the column only compresses slightly. A particle that
+  // reaches a wall sits on its plane (drift's contact), stored as a float: compared in double,
+  // float(0.3) = 0.300000012 is past a 0.3 m wall (the DFSPH 3D tank's ASan build on an AMD EPYC
+  // host, session 31, had one particle there).
   const auto v = sim->fluid();
+  const float wall = float(width);
   for (std::size_t i = 0; i < v.count; ++i) {
     ASSERT_GE(v.x[1][i], 0.0f);
     ASSERT_LE(v.x[1][i], height + spacing);
     for (int k = 0; k < dim; k += 2) {
       ASSERT_GE(v.x[k][i], 0.0f);
-      ASSERT_LE(v.x[k][i], width);
+      ASSERT_LE(v.x[k][i], wall);
     }
   }
 }

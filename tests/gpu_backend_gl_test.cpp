@@ -289,6 +289,10 @@ TEST_F(GpuBackend, SpinningPaddleDragsTheWaterAsOnTheCpu) {
 TEST_P(GpuMethods, CheckpointsResumeAcrossBackends) {
   SimSpec spec = test::dam_break_2d(0.1, 0.005);
   spec.method = GetParam();
+  // PBF at a fixed sweep count: its adaptive stop (mean compression under 1%) can fall one sweep
+  // apart on the two backends when the mean sits near the line, and the comparison then reads
+  // the extra sweep (1.7% RMS in the ASan build on an AMD EPYC host, session 31), not the resume.
+  spec.pbf_max_density_error = 0;
   const auto dir = std::filesystem::temp_directory_path() / fmt::format("rtsph_gpu_ckpt_{}", ::getpid());
   std::filesystem::create_directories(dir);
   for (bool gpu_first : {true, false}) {
@@ -315,12 +319,15 @@ TEST_P(GpuMethods, CheckpointsResumeAcrossBackends) {
     }
     // Then the two backends go on from it as from any state, float round-off apart (PBF's one-sided
     // constraint amplifies that within ten steps of a splash: 0.2% RMS in density between
-    // straight CPU and GPU runs, so two steps are compared).
+    // straight CPU and GPU runs, so two steps are compared). PBF at its fixed 4 sweeps: 6.7e-4 to
+    // 8.3e-4 RMS in the release build, 8.4e-4 to 9.3e-4 in the ASan build (AMD EPYC host, session
+    // 31; the last also after one step): the unconverged sweeps carry each backend's round-off.
+    const double tolerance = std::string(GetParam()) == "pbf" ? 2e-3 : 1e-3;
     for (int s = 0; s < 2; ++s) { first->step(); resumed->step(); again->step(); }
     const double e = relative_rms_density(*first, *resumed);
     std::printf("%s, %s -> %s: density relative RMS 2 steps after the resume: %.3g\n", GetParam(), gpu_first ? "GPU" : "CPU",
                 gpu_first ? "CPU" : "GPU", e);
-    EXPECT_LT(e, 1e-3);
+    EXPECT_LT(e, tolerance);
     EXPECT_NEAR(front(*resumed), front(*first), 0.01 * front(*first));
     const ParticleView a = resumed->fluid(), b = again->fluid();
     ASSERT_EQ(a.count, b.count);

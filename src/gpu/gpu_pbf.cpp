@@ -28,6 +28,7 @@ GpuPbf<D>::GpuPbf(const SimSpec& spec, int threads) : GpuWorld<D>(spec, threads)
   xsph_ = ComputeProgram("pbf_xsph.comp", d);
   vorticity_ = ComputeProgram("pbf_vorticity.comp", d);
   apply_ = ComputeProgram("pbf_apply.comp", d);
+  surface_ = ComputeProgram("pbf_surface.comp", d);
   list_ = ComputeProgram("pbf_list.comp", d);
   gate_ = ComputeProgram("pbf_gate.comp", d);
   // The lists reach a skin past the support (kListSkin), so that the iterations sum the pairs a
@@ -59,16 +60,23 @@ void GpuPbf<D>::step() {
     this->write_params(dt, dt);
     this->bind_all();
     external_.dispatch(this->fluid_.size());       // gravity, brush, walls' hydrostatic part (line 2)
-    this->surface_forces();                        // optional: Akinci 2013 (f_ext, as on the CPU)
     this->kick_drift();                            // v += Δt a; x* = x + Δt v, walls (line 3)
     this->advance_scene_gpu(this->time_ + dt, dt); // obstacles, emitters
   }
   const std::size_t n = this->fluid_.size();
   for (Buffer* b : {&pred_, &wgrad_, &delta_, &omega_}) b->reserve(this->capacity() * 16);
   lambda_buf_.reserve(this->capacity() * 8);
+  const bool surface = this->spec_.surface_tension > 0 || this->spec_.adhesion > 0;
   {
     const auto timer = this->stage_timer(this->times_.neighbours_s);
-    this->sort_particles();                        // lines 5-7
+    this->sort_particles(surface);                 // lines 5-7 (ρ along, for the next stage)
+  }
+  if (surface) {
+    const auto timer = this->stage_timer(this->times_.integrate_s);
+    surface_forces_at_prediction();                // line 2's Akinci 2013, at x* (as on the CPU)
+  }
+  {
+    const auto timer = this->stage_timer(this->times_.neighbours_s);
     list_neighbours();                             // and x*, kept for the velocity update
   }
   if (!lists_) {
@@ -114,6 +122,18 @@ double GpuPbf<D>::choose_time_step() {
 template <int D>
 void GpuPbf<D>::gate(int mode, int least, int most, double threshold) {
   this->run_gate(gate_, mode, least, most, threshold);
+}
+
+template <int D>
+void GpuPbf<D>::surface_forces_at_prediction() {
+  const std::size_t n = this->fluid_.size();
+  for (int mode : {0, 1}) {
+    if (mode == 1) this->surface_forces();       // a = the surface forces alone
+    this->bind_all();
+    delta_.bind(RTSPH_B_DELTA);
+    surface_.set("mode", GLint(mode));
+    surface_.dispatch(n);
+  }
 }
 
 template <int D>

@@ -17,11 +17,13 @@ class GpuPbf final : public GpuWorld<D> {
   void xsph_and_vorticity(double dt);        // eqs. 15-17, and ρ at the corrected positions
   /// Line 6: each particle's neighbours, listed once per substep for the iterations.
   void list_neighbours();
+  /// Line 2's surface forces, at x* (the CPU's Pbf::surface_forces_at_prediction), after the sort.
+  void surface_forces_at_prediction();
   void bind_lists(const ComputeProgram& prog) const;
   void gate(int mode, int least = 0, int most = 0, double threshold = 0);  // pbf_gate.comp
   void add_method_stats(SimStats& s) const override;
 
-  ComputeProgram external_, copy_, lambda_, correct_, velocity_, xsph_, vorticity_, apply_, list_, gate_;
+  ComputeProgram external_, surface_, copy_, lambda_, correct_, velocity_, xsph_, vorticity_, apply_, list_, gate_;
   Buffer pred_, lambda_buf_, wgrad_, delta_, omega_;
   Buffer nlist_, blist_, ncount_;   // pbf_list.comp's lists (fluid, walls) and counts
   GLuint fluid_cap_ = 0, boundary_cap_ = 0;  // list slots per particle

@@ -347,13 +347,13 @@ void GpuWorld<D>::sort_boundary() {
 }
 
 template <int D>
-void GpuWorld<D>::sort_particles() {
+void GpuWorld<D>::sort_particles(bool carry_density) {
   bind_all();  // keys.comp reads the grid from the parameter block
   const std::size_t n = this->fluid_.size();
   sorter_->sort(pos_, n, this->ctx_.fluid_grid.cell_count(), fluid_cells_);
-  if (this->spec_.shifting > 0) {
-    // Shifting reads the neighbours' ρ before the density pass: carry the last step's along, as
-    // the CPU's sort does.
+  if (this->spec_.shifting > 0 || carry_density) {
+    // Shifting (and PBF's surface forces) read the neighbours' ρ before the density pass: carry
+    // the last step's along, as the CPU's sort does.
     dens_alt_.reserve(capacity_ * sizeof(vec4));
     sorter_->gather(fluid_cells_.order, n, {&pos_, &vel_, &dens_}, {&pos_alt_, &vel_alt_, &dens_alt_}, &id_, &id_alt_);
     dens_.swap(dens_alt_);

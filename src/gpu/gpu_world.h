@@ -85,7 +85,9 @@ class GpuWorld : public FluidWorld<D> {
   void write_params(double dt, double kick_dt);
   void kick_drift();                          // v += a kick_dt; x += v dt; walls; put-back
   void advance_scene_gpu(double t_new, double dt);  // obstacles and emitters
-  void sort_particles();                      // fluid (and moving boundary) into cells
+  /// Fluid (and moving boundary) into cells. carry_density: ρ travels with the particles too
+  /// (PBF's surface forces read ρⱼ after its sort; shifting always carries it).
+  void sort_particles(bool carry_density = false);
   void density_and_pressure();                // ρ, p, p/ρ², 1/ρ (density.comp)
   void density_only();                        // ρ alone (FluidWorld::compute_density)
   void measure_density_error_gpu();           // max and mean compression, on the GPU
@@ -144,7 +146,7 @@ class GpuWorld : public FluidWorld<D> {
 
   // Particle buffers (layout.h's bindings); *_alt are the sort's gather targets.
   Buffer pos_, vel_, acc_, dens_, id_, pos_alt_, vel_alt_, id_alt_;
-  Buffer dens_alt_;  // the sort carries the densities along only for shifting (its ρⱼ)
+  Buffer dens_alt_;  // the sort carries ρ along only for shifting (its ρⱼ) and PBF's surface forces
   Buffer put_back_counter_;
 
  private:

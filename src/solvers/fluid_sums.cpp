@@ -120,7 +120,7 @@ void FluidWorld<D>::accelerations(const ForceTerms& t) {
   else if (!p && !t.viscosity && t.external) accelerations_impl<false, false, true>(t);
   else throw std::logic_error("accelerations: unsupported combination of force terms");
   // Surface tension and adhesion are non-pressure forces: they come with the external ones.
-  if (t.external && surface_forces_active()) add_surface_forces();
+  if (t.external && t.surface && surface_forces_active()) add_surface_forces();
 }
 
 template <int D>

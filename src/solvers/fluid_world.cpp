@@ -358,9 +358,10 @@ void FluidWorld<D>::sort_fluid_by_cell() {
   const uint32_t* order = ctx_.fluid_grid.order();
   fluid_.permute_kinematics(order, ctx_.spare, pool_);
   const std::size_t n = fluid_.size();
-  // Particle shifting reads the neighbours' ρ between the sort and the next density sum
-  // (shift_particles): carry the last step's along. (Unsorted, each particle read another's.)
-  if (spec_.shifting > 0) {
+  // Particle shifting (shift_particles) and PBF's surface forces read the neighbours' ρ between
+  // the sort and the next density sum: carry the last step's along. (Unsorted, each particle
+  // read another's.)
+  if (density_read_after_sort()) {
     ctx_.tmp.resize(n);
     const Real* src = fluid_.rho.data();
     Real* dst = ctx_.tmp.data();

@@ -82,6 +82,9 @@ struct ForceTerms {
   // in the middle, a circulation that never settles. Adami et al. 2012's p_b = pᵢ + ρᵢ g·(x_b − xᵢ)
   // restores it; its gᵢ·(x_b − xᵢ) part is fixed for the step and is added here.
   bool wall_hydrostatic = false;
+  // With `external`: surface tension and adhesion (add_surface_forces) when they are on. PBF
+  // asks for them apart, at its predicted positions (Pbf::surface_forces_at_prediction).
+  bool surface = true;
 };
 
 /// What a pair loop over fluid and boundary neighbours reads, gathered once per sum. (Named
@@ -149,6 +152,9 @@ class FluidWorld : public Simulation {
   /// step sorts before its first pair sum answers false, and an edit then leaves the memory
   /// order, and so the bits of the run, exactly as they were.
   virtual bool sort_after_edit() const { return true; }
+  /// Whether a stage reads the neighbours' ρⱼ between the sort and the next density sum, so the
+  /// sort must carry ρ along (particle shifting; PBF's surface forces at x*).
+  virtual bool density_read_after_sort() const { return spec_.shifting > 0; }
 
   // Shared stages, in the order a step usually calls them.
   struct Extremes { double v2 = 0, a2 = 0; };

@@ -37,6 +37,7 @@ class Pbf final : public FluidWorld<D> {
   using W::spec_, W::pool_, W::prm_, W::fluid_, W::boundary_, W::ctx_, W::times_;
 
   double choose_time_step() const;
+  void surface_forces_at_prediction(double dt);  // Akinci 2013 at x*, with the constraint
   void save_predicted_positions();
   void solve_density_constraint(double dt);  // λᵢ, then Δxᵢ (eqs. 11-14), Jacobi
   /// Returns the mean compression it measured. kShare: also s_corr's share of the pressure
@@ -48,6 +49,9 @@ class Pbf final : public FluidWorld<D> {
   void xsph_and_vorticity(double dt);        // eqs. 15-17, and ρ at the corrected positions
   void add_method_stats(SimStats& s) const override;
   bool sort_after_edit() const override { return false; }  // step(): predict, then sort
+  bool density_read_after_sort() const override {  // surface_forces_at_prediction
+    return W::density_read_after_sort() || this->surface_forces_active();
+  }
 
   double stable_weight_ = 1;         // pbf::stable_weight, for solver.pbf.omega = 0
   double gradient_peak_ = 0;         // pbf::gradient_peak (m)

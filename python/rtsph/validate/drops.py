@@ -38,11 +38,8 @@ DROPLET_C0 = 10.0            # m/s
 # jump over R1's reads 0.435 at R1 = 2.5 H (quick) and 0.462 at 5 H (full) against Laplace's 0.5.
 # 3D keeps the cubic spline at h = spacing: its drops are 5-13 spacings across, 1.25-3.3 H at
 # H = 4 spacings (there R2/R1 read 0.87), and a 3D drop of 20 spacings at 270 neighbours is beyond
-# these cores. PBF keeps it too: its position solve with the wide kernel and the cohesion diverges
-# (8 and 32 substeps: particles at 50 m/s within 0.9 s, session 31), and at its stable Jacobi
-# weight (solver.pbf.omega 0) the drop never comes to rest (R1's jump −20 to 98 Pa over 8 draws).
+# these cores.
 DROPLET_KERNEL = {2: ("wendland_c2", 2.0), 3: ("cubic_spline", 1.0)}
-DROPLET_KERNEL_PBF = ("cubic_spline", 1.0)
 # DFSPH's pressure is its density solve's multiplier, known to the solve's tolerance, and the
 # jump to be measured is 3-10% of the core's pressure (the rest balances the cohesion's bulk
 # tension). At the default 0.1% the quick 2D drop's core pressure cycled between 630 and 1,340 Pa
@@ -50,10 +47,28 @@ DROPLET_KERNEL_PBF = ("cubic_spline", 1.0)
 # 250-550 Pa; at 0.001% it held 390-394 Pa (session 31). The solve then takes about 1.5 times as
 # long per drop.
 DROPLET_DFSPH_TOLERANCE = 1e-5
+# PBF with the wide kernel: its Jacobi weight at the stable value (solver.pbf.omega 0; the full
+# step diverges: particles at 50 m/s within 0.9 s, session 31), and s_corr off. s_corr acts on
+# pairs closer than the kernel gradient's peak, which for Wendland C2 at h = 2 spacings is one
+# spacing, where a settled drop's nearest pairs sit: it then pushes as a pressure of its own (R2's
+# jump at the full level read 1.4 ± 2.3 Pa with it against 11.7 without), and the pairing it
+# guards against does not occur with this kernel (Dehnen & Aly 2012). 8 substeps: the capillary
+# step limit (_droplet_scene).
+DROPLET_PBF_WIDE = {"omega": 0.0, "scorr_k": 0.0}
 
 
 def _droplet_kernel(method: str, dim: int):
-    return DROPLET_KERNEL_PBF if method == "pbf" else DROPLET_KERNEL[dim]
+    return DROPLET_KERNEL[dim]
+
+
+def _solver_extra(method: str, dim: int) -> dict:
+    """The method's own solver settings for a drop (the scene's `solver.<method>` block)."""
+    wide = _droplet_kernel(method, dim)[0] == "wendland_c2"
+    if method == "pbf":
+        return {"pbf": {"substeps": 8, **(DROPLET_PBF_WIDE if wide else {})}}
+    if method == "dfsph" and wide:
+        return {"dfsph": {"max_density_error": DROPLET_DFSPH_TOLERANCE}}
+    return {}
 
 
 DROPLET_NU = {2: 0.01, 3: 0.02}  # m²/s: damps the static drops to rest (no effect on the jump)
@@ -74,21 +89,23 @@ LAPLACE_TOL = 0.10
 # liquid 2D drops (Wendland C2, h = 2 spacings) spread 2-5% per draw: fewer draws suffice.
 DROPLET_DRAWS = {"quick": {2: (8, 4), 3: (32, 8)},  # (at R1, at R2)
                  "full": {2: (4, 2), 3: (16, 4)}}
-DROPLET_DRAWS_LOCKED_2D = {"quick": (32, 16), "full": (8, 4)}  # the cubic spline at h = spacing in 2D (PBF)
 
 
 def _kernel_text(method: str, dim: int) -> str:
     kernel, h = _droplet_kernel(method, dim)
     text = f"{kernel.replace('_', ' ')} at h = {h:g} spacings"
-    if method == "dfsph" and kernel == "wendland_c2":
-        text += f", density solved to {DROPLET_DFSPH_TOLERANCE:g}"
+    extra = _solver_extra(method, dim).get(method, {})
+    if "max_density_error" in extra:
+        text += f", density solved to {extra['max_density_error']:g}"
+    if "omega" in extra:
+        text += ", the stable Jacobi weight, s_corr off"
+    if "substeps" in extra:
+        text += f", {extra['substeps']} substeps"
     return text
 
 
 def _draws(method: str, dim: int, level: str):
     """(draws at R1, draws at R2) for this method's drops."""
-    if dim == 2 and _droplet_kernel(method, dim)[0] == "cubic_spline":
-        return DROPLET_DRAWS_LOCKED_2D[level]
     return DROPLET_DRAWS[level][dim]
 
 
@@ -175,9 +192,7 @@ def _droplet_scene(method, dim, R, s, nu, name, stretch=1.0, offset=None):
     # (1.25 ms) below; PBF's default 1/240 s is at it, and its drop sheds particles at 1.5 m/s.
     # 8 substeps: 2 ms.
     kernel, h = _droplet_kernel(method, dim)
-    extra = {"pbf": {"substeps": 8}} if method == "pbf" else {}
-    if method == "dfsph" and kernel == "wendland_c2":
-        extra = {"dfsph": {"max_density_error": DROPLET_DFSPH_TOLERANCE}}
+    extra = _solver_extra(method, dim)
     return rtsph.scene({
         "name": name, "dimension": dim, "domain": {"min": [-L] * dim, "max": [L] * dim}, "gravity": [0.0] * dim,
         "fluid": {"spacing": s, "viscosity": nu, "surface_tension": DROPLET_GAMMA},

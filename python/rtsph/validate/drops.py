@@ -57,13 +57,9 @@ DROPLET_DFSPH_TOLERANCE = 1e-5
 DROPLET_PBF_WIDE = {"omega": 0.0, "scorr_k": 0.0}
 
 
-def _droplet_kernel(method: str, dim: int):
-    return DROPLET_KERNEL[dim]
-
-
 def _solver_extra(method: str, dim: int) -> dict:
     """The method's own solver settings for a drop (the scene's `solver.<method>` block)."""
-    wide = _droplet_kernel(method, dim)[0] == "wendland_c2"
+    wide = DROPLET_KERNEL[dim][0] == "wendland_c2"
     if method == "pbf":
         return {"pbf": {"substeps": 8, **(DROPLET_PBF_WIDE if wide else {})}}
     if method == "dfsph" and wide:
@@ -92,7 +88,7 @@ DROPLET_DRAWS = {"quick": {2: (8, 4), 3: (32, 8)},  # (at R1, at R2)
 
 
 def _kernel_text(method: str, dim: int) -> str:
-    kernel, h = _droplet_kernel(method, dim)
+    kernel, h = DROPLET_KERNEL[dim]
     text = f"{kernel.replace('_', ' ')} at h = {h:g} spacings"
     extra = _solver_extra(method, dim).get(method, {})
     if "max_density_error" in extra:
@@ -191,7 +187,7 @@ def _droplet_scene(method, dim, R, s, nu, name, stretch=1.0, offset=None):
     # the same γ gives with Wendland at h = 2s. WCSPH's steps are far below it (0.4 ms), DFSPH's
     # (1.25 ms) below; PBF's default 1/240 s is at it, and its drop sheds particles at 1.5 m/s.
     # 8 substeps: 2 ms.
-    kernel, h = _droplet_kernel(method, dim)
+    kernel, h = DROPLET_KERNEL[dim]
     extra = _solver_extra(method, dim)
     return rtsph.scene({
         "name": name, "dimension": dim, "domain": {"min": [-L] * dim, "max": [L] * dim}, "gravity": [0.0] * dim,
@@ -207,7 +203,7 @@ def _static_droplet_draw(method, dim, R, level, threads, draw):
     sim = _simulation(_droplet_scene(method, dim, R, s, DROPLET_NU[dim], f"validate_static_droplet_{dim}d",
                                      offset=_draw_offset(draw, dim, s)), threads)
     h = sim.stats["h"]
-    kernel = _droplet_kernel(method, dim)[0]
+    kernel = DROPLET_KERNEL[dim][0]
     mass = 1000.0 * s ** dim
     T, P_eos, P_vp, P_vc = [], [], [], []
 

@@ -9,7 +9,7 @@ measured (CPU, 2026-11-25) and why it fails (docs/validation.md tells the whole 
   finite one: "did not finish" is never within);
 - every listed entry still fails: one that passes must leave the list, so that it is guarded as
   a pass from then on. The exception is an entry marked noisy, whose figure is within its own
-  noise and passes or fails by round-off (PBF's static drops).
+  noise and passes or fails by round-off (none since session 33).
 So the passing cases are held to their tolerances, the failing ones are held where they are,
 and the report still says FAIL for each. This is not the issue's "validate --quick passes":
 that needs this list empty.
@@ -43,38 +43,18 @@ class Known:
         return math.inf if self.measured is None else self.margin * self.measured
 
 
-_ST2 = ("a liquid drop (Wendland C2 at h = 2 spacings) only 2.5 kernel supports across R1 at the quick spacing: "
-        "R2's jump over R1's reads {ratio} against Laplace's 0.5; at the full level (5 supports) {full}")
 _SPH = ("H1's bore from the left wall comes late and spread out at 0.04 m (quick); 0.03 and 0.0275 m are no "
         "better (session 28, before the closing sweep: PBF 3.47 and 3.43 cm, DFSPH 3.46 and 3.29 cm); 0.02 m "
         "(full) passes")
 
 # The static drops' figures are means over lattice draws (drops.DROPLET_DRAWS), each with its
-# standard uncertainty from the draws' spread (the report's notes); their margins reach three of
-# those above the recorded figure.
+# standard uncertainty from the draws' spread (the report's notes).
 KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
-    ("static_droplet_2d", "wcsph"): Known(0.1299, _ST2.format(ratio="0.435", full="0.462: a pass, 7.5 ± 2.1%")
-                                          + "; 0.130 ± 0.019", margin=1.5),
-    ("static_droplet_2d", "dfsph"): Known(0.3145, _ST2.format(ratio="0.343", full="0.63, 26 ± 23%: DFSPH's jump "
-                                                                "spreads ±25% draw to draw there")
-                                          + "; 0.315 ± 0.030", margin=1.3),
-    ("static_droplet_2d", "pbf"): Known(0.09759, "passes at 0.98 of its bound: 9.8 ± 1.0% over the draws (R2/R1 "
-                                               "0.451 at R1 = 2.5 kernel supports; the full level reads 2.2 ± 0.8%), "
-                                               "so it passes or fails by round-off between hosts",
-                                        margin=1.3, noisy=True),
-    ("static_droplet_3d", "pbf"): Known(0.01845, "passes within its noise: 0.018 ± 0.059 over the draws (PBF's jump "
-                                              "spreads twice as wide per draw as WCSPH's and DFSPH's)",
-                                        margin=14.0, noisy=True),
-    ("oscillating_droplet_2d", "wcsph"): Known(0.9309, "passes at 0.93 of its bound: the period 14.0% long against 15% "
-                                                     "(R = 2.5 kernel supports at the quick spacing; the full level "
-                                                     "reads -2.4%), so it passes or fails by round-off between hosts",
-                                               noisy=True),
-    ("oscillating_droplet_2d", "pbf"): Known(1.147, "the period 17% long at the quick spacing (R = 2.5 kernel "
-                                                  "supports), with σ from PBF's own calibration (R2/R1 0.451 there); the "
-                                                  "full level reads -1.2% and passes"),
-    ("oscillating_droplet_2d", "dfsph"): Known(2.008, "the period 30% long at the quick spacing (R = 2.5 kernel "
-                                                    "supports), with σ from DFSPH's own calibration (R2/R1 0.343 "
-                                                    "there); the full level reads -3.6% and passes"),
+    ("static_droplet_2d", "dfsph"): Known(0.1145, "R1's jump reads low: 29.5 ± 0.4 Pa against WCSPH's 32.2 and PBF's "
+                                                "34.1, where R2's (16.4 ± 0.3) is theirs (15.5, 16.8), so the σ it "
+                                                "calibrates predicts R2 11% low; 0.115 ± 0.027 over 4 and 2 draws "
+                                                "(DFSPH's step pressure cycles at rest: each sample a 12-step mean)",
+                                          margin=1.3),
     ("spheric_test2_3d", "pbf"): Known(0.0344, _SPH),
     ("spheric_test2_3d", "dfsph"): Known(0.03358, _SPH),
 }

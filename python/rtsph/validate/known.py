@@ -9,7 +9,7 @@ measured (CPU, 2026-11-25) and why it fails (docs/validation.md tells the whole 
   finite one: "did not finish" is never within);
 - every listed entry still fails: one that passes must leave the list, so that it is guarded as
   a pass from then on. The exception is an entry marked noisy, whose figure is within its own
-  noise and passes or fails by round-off (none since session 33).
+  noise and passes or fails by round-off (DFSPH's 2D static drop).
 So the passing cases are held to their tolerances, the failing ones are held where they are,
 and the report still says FAIL for each. This is not the issue's "validate --quick passes":
 that needs this list empty.
@@ -53,8 +53,10 @@ KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
     ("static_droplet_2d", "dfsph"): Known(0.1145, "R1's jump reads low: 29.5 ± 0.4 Pa against WCSPH's 32.2 and PBF's "
                                                 "34.1, where R2's (16.4 ± 0.3) is theirs (15.5, 16.8), so the σ it "
                                                 "calibrates predicts R2 11% low; 0.115 ± 0.027 over 4 and 2 draws "
-                                                "(DFSPH's step pressure cycles at rest: each sample a 12-step mean)",
-                                          margin=1.3),
+                                                "(DFSPH's step pressure cycles at rest: each sample a 12-step mean); "
+                                                "0.6 of its uncertainty above the bound, so it may pass by the draw "
+                                                "of round-off on another host",
+                                          margin=1.3, noisy=True),
     ("spheric_test2_3d", "pbf"): Known(0.0344, _SPH),
     ("spheric_test2_3d", "dfsph"): Known(0.03358, _SPH),
 }

@@ -181,6 +181,28 @@ def test_lattice_draws_shift_the_lattice_and_fill_the_ball(dim):
                 assert abs((b["min"][a] - o[a]) / s - round((b["min"][a] - o[a]) / s)) < 1e-9
 
 
+# A drop's pressure sample is the mean over consecutive steps (DFSPH's step pressure cycles at
+# rest): each particle's mean of what stepping one by one reads, the simulation left on the last
+# of those steps. Two runs of the same scene give the same bits, so one steps by hand.
+def test_drop_pressure_samples_are_means_over_consecutive_steps():
+    import rtsph
+    from rtsph.validate.drops import _droplet_scene, _mean_pressure_and_density
+    scene = _droplet_scene("dfsph", 2, 0.02, 0.005, 0.01, "t")
+    by_hand, sampled = rtsph.Simulation(scene, threads=1), rtsph.Simulation(scene, threads=1)
+    by_hand.step(5)
+    sampled.step(5)
+    p, rho = [by_hand.pressure.astype(np.float64)], [by_hand.density.astype(np.float64)]
+    for _ in range(3):
+        by_hand.step()
+        p.append(by_hand.pressure.astype(np.float64))
+        rho.append(by_hand.density.astype(np.float64))
+    mp, mrho = _mean_pressure_and_density(sampled, 4)
+    assert sampled.step_count == by_hand.step_count == 8
+    assert np.ptp(np.array(p), axis=0).max() > 0  # the steps differ, so the mean is not one of them
+    np.testing.assert_allclose(mp, np.mean(p, axis=0), rtol=1e-6, atol=1e-9)
+    np.testing.assert_allclose(mrho, np.mean(rho, axis=0), rtol=1e-6)
+
+
 # The pressure force's virial on a uniform lattice at uniform p is p times the lattice's kernel
 # moment (ρ/d) Σⱼ (m/ρ) r² |G|, 1 to within the kernel's discretisation: so each kernel's gradient
 # is the solver's (a wrong normalisation or exponent reads far off).

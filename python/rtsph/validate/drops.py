@@ -107,8 +107,6 @@ def _kernel_text(method: str, dim: int) -> str:
 # limit, each with 12 Jacobi sweeps to its 1e-5 density error) and spread less draw to draw with
 # the step-averaged pressure (R1 26-30 Pa, R2 15.9-16.7 Pa over 8 and 4 draws; WCSPH's R1 29-35):
 # half the draws.
-
-
 def _draws(method: str, dim: int, level: str):
     """(draws at R1, draws at R2) for this method's drops."""
     n1, n2 = DROPLET_DRAWS[level][dim]

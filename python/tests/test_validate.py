@@ -360,3 +360,19 @@ def test_both_plot_panels_survive_a_worker_process():
     assert [c[0] for c in back.side_plot.calls] == ["plot"]
     png = report._plot_case("x", [back])
     assert png[:8] == b"\x89PNG\r\n\x1a\n"
+
+
+def test_jobs_start_the_longest_task_first():
+    # --jobs 2 finishes when its last task does: DFSPH's 2D static drop (with its oscillating
+    # drop, which reuses its σ) is the quick suite's longest and must start first, the cheap
+    # cases last, each case's methods together in the serial order otherwise.
+    from rtsph.validate.parallel import tasks_for
+    methods = ["wcsph", "pbf", "dfsph"]
+    tasks = tasks_for(["hydrostatic_2d", "static_droplet_2d", "static_droplet_3d", "oscillating_droplet_2d"], methods)
+    assert tasks[0] == [("static_droplet_2d", "dfsph"), ("oscillating_droplet_2d", "dfsph")]
+    assert tasks[1] == [("static_droplet_2d", "wcsph"), ("oscillating_droplet_2d", "wcsph")]
+    assert [t[0] for t in tasks[2:5]] == [("static_droplet_3d", m) for m in methods]
+    assert tasks[5] == [("static_droplet_2d", "pbf"), ("oscillating_droplet_2d", "pbf")]
+    assert [t[0] for t in tasks[6:]] == [("hydrostatic_2d", m) for m in methods]
+    assert sorted(x for t in tasks for x in t) == sorted(
+        (c, m) for c in ["hydrostatic_2d", "static_droplet_2d", "static_droplet_3d", "oscillating_droplet_2d"] for m in methods)

@@ -84,7 +84,7 @@ DROPLET_NU = {2: 0.01, 3: 0.02}  # m²/s: damps the static drops to rest (no eff
 # keep 2-3 s: they creep for as long as they were run (WCSPH, draw 1: at 1 cm R1 100-110 Pa and R2
 # 64 to 57 Pa over 2-8 s; at 7.5 mm R1 64 to 53 and R2 38.6 to 34.0 over 3-8 s), a crystal's
 # slow rearrangement rather than a settling, and the longer run does not bring R2/R1 nearer 0.5
-# (0.64 at 7.5 mm, 8 s). docs/validation.md, "The drops had not settled (session 34)".
+# (0.64 at 7.5 mm, 8 s). docs/validation.md, droplet section, "Session 34: the drops had not settled".
 DROPLET_LEVELS = {
     2: {"quick": (0.003, 8.0), "full": (0.0025, 8.0)},
     3: {"quick": (0.01, 2.0), "full": (0.0075, 3.0)},

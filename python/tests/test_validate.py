@@ -325,6 +325,28 @@ def test_the_spheric_pressures_are_the_front_face_sensors_bottom_up():
     assert max(_impact_figures(d["t"], d[k])["peak"] for k in SPHERIC_SENSORS) == pytest.approx(11239)
 
 
+def test_the_probes_read_still_water_at_its_depth():
+    # A probe's depth is Σ w(r) s³ over the particles: over a lattice of still water it must read
+    # the water's depth wherever the probe sits on the lattice (the case's quick and full
+    # spacings, probes moved across a whole lattice cell). The cone the probes used before
+    # session 35 read 0.980-1.036 of the depth (0.578 m over 0.56 m at H4, quick).
+    from rtsph.validate.dam_breaks import probe_radius, probe_weight
+    for s in (0.04, 0.02):
+        layers = 14
+        x = (np.arange(round(1.0 / s)) + 0.5) * s
+        X, Z = np.meshgrid(x, x)
+        reads = []
+        for dx in np.linspace(0.0, s, 7):
+            for dz in np.linspace(0.0, s, 7):
+                w = probe_weight(np.hypot(X - 0.5 - dx, Z - 0.5 - dz), probe_radius(s))
+                reads.append(layers * float(np.sum(w)) * s ** 3 / (layers * s))
+        assert min(reads) > 0.997 and max(reads) < 1.004, (s, min(reads), max(reads))
+    # and the weight is normalised over the plane
+    r = np.linspace(0.0, 0.2, 20001)
+    f = probe_weight(r, 0.1) * 2 * np.pi * r
+    assert float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(r))) == pytest.approx(1.0, rel=1e-6)
+
+
 def test_impact_figures_read_a_known_pulse():
     from rtsph.validate.dam_breaks import _impact_figures
     t = np.arange(0.38, 0.544, 0.001)

@@ -163,6 +163,25 @@ SPHERIC_PLATEAU = (0.48, 0.543)   # s: after the impact's peaks, the pressure of
 SPHERIC_ARRIVAL_PA = 1000.0       # a sensor is hit when its pressure first passes this
 
 
+# A probe reads the depth of water over it: the fluid volume (particles × s³) around its line,
+# weighted by a smooth weight w(r) normalised over the plane. Robust to splashes and air, unlike
+# the highest particle, and smooth: a square column instead (counting particles inside) jumps by
+# a lattice column whenever one crosses its edge (±0.05 m at 0.04 m spacing). The weight is the
+# 2D cubic spline of support R = 2.5 spacings (at least 5 cm): over a lattice of still water it
+# sums to 0.999-1.003 of the depth wherever the probe sits on the lattice. The cone
+# w = 3(1 − r/R)/(πR²) it replaced (session 35) summed to 0.980-1.036, and read 0.578 m over
+# 0.56 m of water at H4 at the quick level (test_the_probes_read_still_water_at_its_depth).
+def probe_radius(s: float) -> float:
+    return max(0.05, 2.5 * s)
+
+
+def probe_weight(r, R: float):
+    """The cubic spline (Monaghan 1992) of support R in the plane, normalised: ∫ w dA = 1 (1/m²)."""
+    q = 2.0 * np.asarray(r) / R
+    w = np.where(q < 1.0, 1.0 - 1.5 * q * q + 0.75 * q ** 3, 0.25 * np.clip(2.0 - q, 0.0, None) ** 3)
+    return w * (40.0 / (7.0 * math.pi * R * R))
+
+
 def _spheric_pressures():
     c = _data_columns("spheric_test2_pressures.csv")
     return {"t": c["t_s"], **{k: c[f"{k}_pa"] for k in SPHERIC_SENSORS}}
@@ -221,7 +240,7 @@ def spheric_test2(method: str, level: str, threads: int) -> Result:
                setup=(f"3.22 × 1 × 1 m tank, water 1.228 × 1 × 0.55 m (in whole spacings: {round(1.228 / s) * s:.3g} × 1 × "
                       f"{round(0.55 / s) * s:.3g} m), box 0.161 × 0.403 × 0.161 m at "
                       f"x = 0.6635 m; spacing {s} m, default parameters, 6 s; height = fluid volume around the "
-                      f"probe, weighted by a cone of radius {max(0.05, 2.5 * s):g} m normalised over the plane"))
+                      f"probe, weighted by the 2D cubic spline of support {probe_radius(s):g} m normalised over the plane"))
     data = _spheric_data()
     # The column in whole spacings against the far wall. The lattice starts half a spacing inside
     # the block, so a length that is not a whole number of spacings puts its last column too
@@ -238,12 +257,7 @@ def spheric_test2(method: str, level: str, threads: int) -> Result:
         "end_time": SPHERIC_T_END})
     sim = _simulation(scene, threads)
     t0 = time.perf_counter()
-    # A probe reads the depth of water over it: the fluid volume (particles × s³) around its
-    # line, weighted by a cone of radius R normalised over the plane, w(r) = 3(1 − r/R)/(πR²).
-    # Robust to splashes and air, unlike the highest particle, and smooth: a square column
-    # instead (counting particles inside) jumps by a lattice column whenever one crosses its edge
-    # (±0.05 m at 0.04 m spacing). R = 2.5 spacings, at least 5 cm.
-    R = max(0.05, 2.5 * s)
+    R = probe_radius(s)
     # Pressure on the box's front face (the side the water hits, x = 0.8245 m): the mean pressure
     # of the fluid within 1.5 spacings of it, below 0.08 m and within 0.1 m of the centre line.
     # And at MARIN's sensors P1-P4: the Shepard (kernel-weighted) mean of the fluid's pressure
@@ -274,9 +288,7 @@ def spheric_test2(method: str, level: str, threads: int) -> Result:
         x = sim_.positions
         T.append(sim_.time)
         for k, px in SPHERIC_PROBES.items():
-            rr = np.hypot(x[:, 0] - px, x[:, 2] - 0.5)
-            w = np.clip(1.0 - rr / R, 0.0, None) * (3.0 / (math.pi * R * R))
-            H[k].append(float(np.sum(w)) * s ** 3)
+            H[k].append(float(np.sum(probe_weight(np.hypot(x[:, 0] - px, x[:, 2] - 0.5), R))) * s ** 3)
         front = (x[:, 0] > 0.8245) & (x[:, 0] < 0.8245 + 1.5 * s) & (x[:, 1] < 0.08) & (np.abs(x[:, 2] - 0.5) < 0.1)
         PF.append(float(np.mean(sim_.pressure[front])) if front.any() else 0.0)
     record(sim)

@@ -175,11 +175,14 @@ def probe_radius(s: float) -> float:
     return max(0.05, 2.5 * s)
 
 
+def cubic_spline_shape(q):
+    """The cubic spline's shape (Monaghan 1992) at q = r/h, support 2h: 1 at q = 0, unnormalised."""
+    return 0.25 * np.clip(2.0 - q, 0.0, None) ** 3 - np.clip(1.0 - q, 0.0, None) ** 3
+
+
 def probe_weight(r, R: float):
-    """The cubic spline (Monaghan 1992) of support R in the plane, normalised: ∫ w dA = 1 (1/m²)."""
-    q = 2.0 * np.asarray(r) / R
-    w = np.where(q < 1.0, 1.0 - 1.5 * q * q + 0.75 * q ** 3, 0.25 * np.clip(2.0 - q, 0.0, None) ** 3)
-    return w * (40.0 / (7.0 * math.pi * R * R))
+    """The cubic spline of support R in the plane, normalised: ∫ w dA = 1 (1/m²)."""
+    return cubic_spline_shape(2.0 * np.asarray(r) / R) * (40.0 / (7.0 * math.pi * R * R))
 
 
 def _spheric_pressures():
@@ -281,7 +284,7 @@ def spheric_test2(method: str, level: str, threads: int) -> Result:
         for k, y in SPHERIC_SENSORS.items():
             q = np.sqrt((xn[:, 0] - SPHERIC_FACE_X - 0.5 * s) ** 2 + (xn[:, 1] - y) ** 2
                         + (xn[:, 2] - SPHERIC_SENSOR_ACROSS) ** 2) / s
-            w = sig * (0.25 * np.clip(2 - q, 0, None) ** 3 - np.clip(1 - q, 0, None) ** 3)
+            w = sig * cubic_spline_shape(q)
             PS[k].append(float(np.sum(w * pn) / np.sum(w)) if np.sum(w) > 0 else 0.0)
 
     def record(sim_):

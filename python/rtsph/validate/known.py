@@ -44,8 +44,8 @@ class Known:
         return math.inf if self.measured is None else self.margin * self.measured
 
 
-_SPH = ("H1, behind the box, is the worst probe: rtsph's slosh falls behind MARIN's, by 0.05 s in the first "
-        "second and 0.2-0.4 s by 5-6 s at every probe, with every method and at both levels, and H1's bore from "
+_SPH = ("H1, behind the box, is the worst probe: rtsph's slosh falls 0.1-0.4 s behind MARIN's once the water "
+        "has hit the box and the left wall, at every probe, with every method and at both levels, and H1's bore from "
         "the left wall comes late and spread out (docs/validation.md, SPHERIC section, session 35). 0.03 and "
         "0.025 m are no better (session 35: PBF 3.67 and 3.38 cm, DFSPH 3.36 and 2.95); 0.02 m (full) passes")
 

@@ -330,8 +330,8 @@ def test_the_probes_read_still_water_at_its_depth():
     # the water's depth wherever the probe sits on the lattice (the case's quick and full
     # spacings, probes moved across a whole lattice cell). The cone the probes used before
     # session 35 read 0.980-1.036 of the depth (0.578 m over 0.56 m at H4, quick).
-    from rtsph.validate.dam_breaks import probe_radius, probe_weight
-    for s in (0.04, 0.02):
+    from rtsph.validate.dam_breaks import SPHERIC_LEVELS, probe_radius, probe_weight
+    for s in SPHERIC_LEVELS.values():
         x = (np.arange(round(1.0 / s)) + 0.5) * s
         X, Z = np.meshgrid(x, x)
         reads = []
@@ -344,6 +344,18 @@ def test_the_probes_read_still_water_at_its_depth():
     r = np.linspace(0.0, 0.2, 20001)
     f = probe_weight(r, 0.1) * 2 * np.pi * r
     assert float(np.sum(0.5 * (f[1:] + f[:-1]) * np.diff(r))) == pytest.approx(1.0, rel=1e-6)
+
+
+def test_the_spheric_column_holds_marins_water():
+    # The lattice fills whole spacings: each level's spacing must divide the tank's width (1 m)
+    # and the water's depth (0.55 m), so the column stands as deep and as wide as MARIN's, and
+    # the whole-spacing length (1.228 m rounded) may add or take at most 2% of the water. At
+    # 0.04 / 0.02 m (sessions 19-35) it stood 0.56 m deep: 2.8% / 1.2% more water, a faster slosh.
+    from rtsph.validate.dam_breaks import SPHERIC_LEVELS
+    for s in SPHERIC_LEVELS.values():
+        for extent in (1.0, 0.55):
+            assert abs(round(extent / s) * s - extent) < 1e-9, (s, extent)
+        assert abs(round(1.228 / s) * s / 1.228 - 1.0) <= 0.02, s
 
 
 def test_impact_figures_read_a_known_pulse():

@@ -45,9 +45,10 @@ class Known:
 
 
 _SPH = ("H1, behind the box, is the worst probe: rtsph's slosh falls 0.1-0.4 s behind MARIN's once the water "
-        "has hit the box and the left wall, at every probe, with every method and at both levels, and H1's bore from "
-        "the left wall comes late and spread out (docs/validation.md, SPHERIC section, session 35). 0.03 and "
-        "0.025 m are no better (session 35: PBF 3.67 and 3.38 cm, DFSPH 3.36 and 2.95); 0.02 m (full) passes")
+        "has hit the box and the left wall, at every probe, with every method and at every spacing tried "
+        "(docs/validation.md, SPHERIC section, sessions 35-36). The quick spacing, 0.05 m, divides the tank's "
+        "width and depth, so the water is MARIN's to 1.8%; eight round-off draws (gravity nudged by 1e-7) read "
+        "WCSPH 3.24-3.37 cm, PBF 3.45-3.80, DFSPH 3.56-3.80 (session 36). At the full 0.025 m PBF fails too")
 
 # The static drops' figures are means over lattice draws (drops.DROPLET_DRAWS), each with its
 # standard uncertainty from the draws' spread (the report's notes).
@@ -59,8 +60,9 @@ KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
                                                 "lattice the high one) and read low against WCSPH's 32.2 and "
                                                 "PBF's 34.1; was 0.115 before the 2D drops ran 8 s (session 34)",
                                           margin=1.3, noisy=True),
-    ("spheric_test2_3d", "pbf"): Known(0.0338, _SPH),
-    ("spheric_test2_3d", "dfsph"): Known(0.0314, _SPH),
+    ("spheric_test2_3d", "wcsph"): Known(0.0329, _SPH),
+    ("spheric_test2_3d", "pbf"): Known(0.0360, _SPH),
+    ("spheric_test2_3d", "dfsph"): Known(0.0357, _SPH),
 }
 
 

@@ -48,7 +48,7 @@ _SPH = ("H1, behind the box, is the worst probe: rtsph's slosh falls 0.1-0.4 s b
         "has hit the box and the left wall, at every probe, with every method and at every spacing tried "
         "(docs/validation.md, SPHERIC section, sessions 35-36). The quick spacing, 0.05 m, divides the tank's "
         "width and depth, so the water is MARIN's to 1.8%; eight round-off draws (gravity nudged by 1e-7) read "
-        "WCSPH 3.24-3.37 cm, PBF 3.45-3.80, DFSPH 3.56-3.80 (session 36). At the full 0.025 m PBF fails too")
+        "WCSPH 3.24-3.37 cm, PBF 3.45-3.80, DFSPH 3.38-3.80 (session 36). At the full 0.025 m PBF fails too")
 
 # The static drops' figures are means over lattice draws (drops.DROPLET_DRAWS), each with its
 # standard uncertainty from the draws' spread (the report's notes).

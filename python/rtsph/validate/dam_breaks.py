@@ -298,7 +298,7 @@ def spheric_test2(method: str, level: str, threads: int) -> Result:
             H[k].append(float(np.sum(probe_weight(np.hypot(x[:, 0] - px, x[:, 2] - 0.5), R))) * s ** 3)
         front = (x[:, 0] > 0.8245) & (x[:, 0] < 0.8245 + 1.5 * s) & (x[:, 1] < 0.08) & (np.abs(x[:, 2] - 0.5) < 0.1)
         PF.append(float(np.mean(sim_.pressure[front])) if front.any() else 0.0)
-    record(sim)
+    # run() calls its callback at its start too: the first call records t = 0.
     sim.run(until=SPHERIC_IMPACT[0], every=0.02, callback=record)
     sim.run(until=SPHERIC_IMPACT[1], every=0.001, callback=sensors)  # the impact at MARIN's ~1 ms
     sim.run(until=SPHERIC_T_END, every=0.02, callback=record)

@@ -2,8 +2,8 @@
 """A linear standing wave in a 2D tank: how fast rtsph's gravity waves lose their amplitude.
 
 The first sloshing mode of a tank L = 1 m long, water h deep: eta = A cos(kx) sin(wt), k = pi/L,
-w^2 = g k tanh(kh) (linear theory; water's own viscosity would keep 99% of the amplitude for
-hundreds of periods). The water starts flat, on its lattice, with the mode's velocity field
+w^2 = g k tanh(kh) (linear theory; water's own viscosity, in its Stokes layers on the floor and
+the end walls, would take about 1-2% of the amplitude each period). The water starts flat, on its lattice, with the mode's velocity field
 (u = -A w cosh(ky)/sinh(kh) sin(kx), v = A w sinh(ky)/sinh(kh) cos(kx)); the mode's amplitude
 is read from the water's first moment, (2/(L h)) * sum(y cos(kx)) * s^2, which is A sin(wt) for
 the exact wave. Prints the largest |amplitude| in each of four periods over the first's.

@@ -23,9 +23,18 @@ import rtsph
 def main() -> None:
     if len(sys.argv) < 3:
         sys.exit(__doc__)
-    method, s = sys.argv[1], float(sys.argv[2])
-    h = float(sys.argv[3]) if len(sys.argv) > 3 else 0.2
-    patch = json.loads(sys.argv[4]) if len(sys.argv) > 4 else {}
+    method = sys.argv[1]
+    try:
+        s = float(sys.argv[2])
+        h = float(sys.argv[3]) if len(sys.argv) > 3 else 0.2
+    except ValueError:
+        raise ValueError(f"spacing and depth must be numbers in m, got {sys.argv[2:4]}") from None
+    if not (0 < s < h <= 1):
+        raise ValueError(f"need 0 < spacing < depth <= 1 m, got spacing {s}, depth {h}")
+    try:
+        patch = json.loads(sys.argv[4]) if len(sys.argv) > 4 else {}
+    except json.JSONDecodeError as e:
+        raise ValueError(f"the scene patch (4th argument) is not JSON: {sys.argv[4]!r}: {e}") from None
     L, A, g = 1.0, 0.01, 9.81
     k = math.pi / L
     w = math.sqrt(g * k * math.tanh(k * h))
@@ -56,4 +65,7 @@ def main() -> None:
 
 
 if __name__ == "__main__":
-    main()
+    try:
+        main()
+    except ValueError as e:  # a bad argument or scene value (SceneError, JSONDecodeError): one line
+        sys.exit(f"standing_wave.py: {e}")

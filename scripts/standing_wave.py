@@ -35,6 +35,8 @@ def main() -> None:
         patch = json.loads(sys.argv[4]) if len(sys.argv) > 4 else {}
     except json.JSONDecodeError as e:
         raise ValueError(f"the scene patch (4th argument) is not JSON: {sys.argv[4]!r}: {e}") from None
+    if not isinstance(patch, dict):
+        raise ValueError(f"the scene patch (4th argument) must be a JSON object, got {sys.argv[4]!r}")
     L, A, g = 1.0, 0.01, 9.81
     k = math.pi / L
     w = math.sqrt(g * k * math.tanh(k * h))

@@ -1,5 +1,6 @@
 """rtsph validate: cases run, the report is written, exit codes say pass (0), fail (1), bad input (2)."""
 import json
+import math
 import os
 import subprocess
 import sys
@@ -356,6 +357,25 @@ def test_the_spheric_column_holds_marins_water():
         for extent in (1.0, 0.55):
             assert abs(round(extent / s) * s - extent) < 1e-9, (s, extent)
         assert abs(round(1.228 / s) * s / 1.228 - 1.0) <= 0.02, s
+
+
+def test_the_standing_wave_reads_its_mode():
+    # The mode's amplitude from the water's first moment, each particle carrying its area s²: water
+    # standing h + A cos(kx) deep in columns of whole spacings reads A (to the columns' rounding),
+    # flat water 0; and the theory's period is the dispersion relation's (1.517 s for 1 m by 0.2 m).
+    from rtsph.validate.waves import WAVE_H, WAVE_L, mode_amplitude, standing_wave_theory
+    k, w, period = standing_wave_theory()
+    assert period == pytest.approx(2 * math.pi / math.sqrt(9.81 * math.pi * math.tanh(math.pi * 0.2)))
+    assert period == pytest.approx(1.5166, abs=1e-4)
+    s = 0.001
+
+    def water(A):
+        cols = (np.arange(round(WAVE_L / s)) + 0.5) * s
+        return np.array([(x, (j + 0.5) * s) for x in cols
+                         for j in range(round((WAVE_H + A * math.cos(k * x)) / s))])
+    assert abs(mode_amplitude(water(0.0), k, s)) < 1e-9
+    for A in (0.01, -0.005):
+        assert mode_amplitude(water(A), k, s) == pytest.approx(A, rel=0.02)
 
 
 def test_impact_figures_read_a_known_pulse():

@@ -1,5 +1,5 @@
 """The validation cases. Each takes (method, level, threads) and returns a Result; the cases
-live in one module per family (tanks, dam_breaks, channels, drops, elliptical), what they share in _common.
+live in one module per family (tanks, dam_breaks, channels, drops, elliptical, waves), what they share in _common.
 
 Levels: "quick" (coarse, for CI: the whole suite in a few minutes on two cores) and "full"
 (the report's resolution, with a convergence study where the issue asks for one).
@@ -18,6 +18,7 @@ from .dam_breaks import MARTIN_MOYCE_HEIGHT, _height_error, _spheric_data, dam_b
 from .drops import _ball_blocks, _virial_pressures, oscillating_droplet, static_droplet  # noqa: F401
 from .elliptical import elliptical_drop, elliptical_drop_exact  # noqa: F401
 from .tanks import hydrostatic, still_water
+from .waves import standing_wave
 
 CASES: Dict[str, Callable[[str, str, int], Result]] = {
     "hydrostatic_2d": hydrostatic(2),
@@ -32,6 +33,7 @@ CASES: Dict[str, Callable[[str, str, int], Result]] = {
     "elliptical_drop_2d": elliptical_drop,
     "couette_2d": couette,
     "spheric_test2_3d": spheric_test2,
+    "standing_wave_2d": standing_wave,
 }
 
 

@@ -1,4 +1,4 @@
-// `rtsph validate [CASE…] [--method M|all] [--quick|--full] [--out DIR] [--threads N]`: the
+// `rtsph validate [CASE…] [--method M|all] [--quick|--full] [--out DIR] [--threads N] [--set K=V]`: the
 // validation suite. The cases, their comparison and the report (plots through matplotlib) live
 // in the Python package (python/rtsph/validate), on the same engine; this command finds a
 // Python that has it and hands over every argument. Exit codes: 0 every case passed, 1 one

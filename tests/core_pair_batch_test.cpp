@@ -330,5 +330,22 @@ TYPED_TEST(GridTest, WalksFromCellsWithNothingNearSkipNoCandidate) {
   }
 }
 
+// ---- the padding the batches read -----------------------------------------------------------
+
+/// Lanes past a range's end read the kPad elements past the array's size, and sums weight them by
+/// zero; 0 × NaN is NaN, so those elements must be zero whatever the array held before: after a
+/// shrink too (session 38: scratch that had carried int -1s, a NaN's bits, was swapped in shorter).
+TEST(AlignedArrayPad, ShrinkingLeavesThePadZero) {
+  AlignedArray<float> a(100);
+  for (std::size_t i = 0; i < a.size(); ++i) a[i] = std::numeric_limits<float>::quiet_NaN();
+  a.resize(40);
+  for (std::size_t i = 40; i < 40 + AlignedArray<float>::kPad; ++i) EXPECT_EQ(a.data()[i], 0.0f) << i;
+  a.resize(30);  // and again, from a size whose pad is already clear
+  for (std::size_t i = 30; i < 30 + AlignedArray<float>::kPad; ++i) EXPECT_EQ(a.data()[i], 0.0f) << i;
+  a.resize(60);  // growing back: the new elements are zero too
+  for (std::size_t i = 30; i < 60 + AlignedArray<float>::kPad; ++i) EXPECT_EQ(a.data()[i], 0.0f) << i;
+  for (std::size_t i = 0; i < 30; ++i) EXPECT_TRUE(std::isnan(a[i])) << i;  // the kept ones keep their values
+}
+
 }  // namespace
 }  // namespace rtsph::grid_test

@@ -108,9 +108,48 @@ def test_known_failures_hold_the_failing_cases_where_they_are(tmp_path, monkeypa
 
 
 @pytest.mark.parametrize("args", [["no_such_case"], ["--method", "sph2014"], ["--backend", "cuda"], ["--threads", "-1"],
-                                  ["--jobs", "0"], ["--no-such-flag"]])
+                                  ["--jobs", "0"], ["--no-such-flag"], ["--set", "solver.smoothing_ratio"],
+                                  ["--set", "fluid.spacing=0.01"], ["--set", "solver.method=pbf"],
+                                  ["--set", "gravity=0,0"], ["--set", "solver.smoothing_ratio=9"],
+                                  ["--set", "solver.smoothing_rati=1.3"],
+                                  ["--set", "solver.smoothing_ratio=1.3", "--known-failures"]])
 def test_bad_arguments_exit_2(args, tmp_path):
     assert vmain.main(args + ["--out", str(tmp_path)]) == 2
+
+
+def test_set_reaches_every_scene_in_every_worker(tmp_path, monkeypatch):
+    """--set changes a parameter in every scene a case builds, over the case's own, and the
+    report says so; a run without it is back at the case's parameters."""
+    import rtsph
+    from rtsph.validate import _common
+
+    def h_over_s(method, level, threads):
+        sim = _common._simulation(rtsph.scene({"dimension": 2, "domain": {"min": [0, 0], "max": [1, 1]},
+                                               "fluid": {"spacing": 0.1}, "solver": {"smoothing_ratio": 1.1},
+                                               "fluid_blocks": [{"min": [0, 0], "max": [0.5, 0.5]}]}), threads)
+        return _common._finish(Result(case="h_over_s", method=method, metric="h/s", error=sim.stats["h"] / 0.1,
+                                      tolerance=10.0))
+    monkeypatch.setitem(validate.CASES, "h_over_s", h_over_s)
+    args = ["h_over_s", "--method", "wcsph", "--threads", "1"]
+    assert vmain.main(args + ["--out", str(tmp_path / "a"), "--set", "solver.smoothing_ratio=1.3"]) == 0
+    summary = json.loads((tmp_path / "a" / "summary.json").read_text())
+    assert summary["cases"][0]["error"] == pytest.approx(1.3)
+    assert summary["meta"]["overrides"] == {"solver.smoothing_ratio": "1.3"}
+    assert "--set solver.smoothing_ratio=1.3" in (tmp_path / "a" / "report.html").read_text()
+    assert vmain.main(args + ["--out", str(tmp_path / "b")]) == 0
+    assert json.loads((tmp_path / "b" / "summary.json").read_text())["cases"][0]["error"] == pytest.approx(1.1)
+    # Worker processes (--jobs) get the same parameters: a real case, the same bits as a serial run,
+    # and not those of the defaults.
+    errors = {}
+    for name, extra in (("default", []), ("serial", ["--jobs", "1"]), ("jobs", ["--jobs", "2"])):
+        out = tmp_path / name
+        over = [] if name == "default" else ["--set", "solver.smoothing_ratio=1.3"]
+        r = subprocess.run([sys.executable, "-m", "rtsph.validate", "poiseuille_2d", "--method", "wcsph", "--quick",
+                            "--threads", "1", "--out", str(out)] + extra + over,
+                           capture_output=True, text=True, timeout=600)
+        assert r.returncode in (0, 1), r.stderr
+        errors[name] = json.loads((out / "summary.json").read_text())["cases"][0]["error"]
+    assert errors["jobs"] == errors["serial"] != errors["default"]
 
 
 def test_an_out_it_cannot_write_exits_2_before_any_case_runs(tmp_path, monkeypatch, capsys):

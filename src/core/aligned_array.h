@@ -34,10 +34,18 @@ class AlignedArray {
     std::swap(size_, o.size_);
     std::swap(cap_, o.cap_);
   }
-  /// Grows capacity geometrically; new elements and the pad are zero.
+  /// Grows capacity geometrically. Every element past size() is zero, the pad included: new
+  /// elements start at zero, and shrinking zeroes what it drops. 8-wide loads read the elements
+  /// past a range's end as masked lanes, and sums weight those lanes by zero, which leaves zero
+  /// only if they are finite. (Scratch that had carried int data, -1 being a NaN's bits, swapped
+  /// in as a shorter array turned WCSPH's wall pressure into NaN at its first step: 3D, particle
+  /// shifting, more boundary samples than fluid particles; session 38.)
   void resize(std::size_t n) {
     if (n > cap_) reserve(std::max(n, cap_ + cap_ / 2));
-    if (n > size_) std::memset(static_cast<void*>(data_ + size_), 0, (n - size_) * sizeof(T));
+    if (n > size_)
+      std::memset(static_cast<void*>(data_ + size_), 0, (n - size_) * sizeof(T));
+    else if (n < size_)
+      std::memset(static_cast<void*>(data_ + n), 0, (size_ - n) * sizeof(T));
     size_ = n;
   }
   void reserve(std::size_t cap) {

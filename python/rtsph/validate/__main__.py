@@ -28,6 +28,36 @@ def _unwritable(out: str) -> str:
     return ""
 
 
+# --set keys the cases own: each level's spacing is the case's geometry and its reference's
+# resolution, and --method/--backend choose the rest.
+_NOT_SETTABLE = ("fluid.spacing", "solver.method", "solver.backend")
+
+
+def _overrides(assignments) -> tuple:
+    """({key: value}, '') from --set's KEY=VALUE texts, or ({}, the problem's one line)."""
+    out = {}
+    for a in assignments:
+        key, eq, value = a.partition("=")
+        key = key.strip()
+        if not eq or not key:
+            return {}, f"{a!r}: expected KEY=VALUE, e.g. solver.smoothing_ratio=1.3"
+        if not key.startswith(("solver.", "fluid.")) or key in _NOT_SETTABLE:
+            return {}, (f"{a!r}: {key} is not one --set may change here (a solver.* or fluid.* parameter "
+                        f"other than {', '.join(_NOT_SETTABLE)})")
+        out[key] = value.strip()
+    if out:
+        # The engine's own check, on a small scene, before any case runs: the key and value's
+        # one-line message (unknown key, out of range).
+        import rtsph
+        probe = {"dimension": 2, "domain": {"min": [0, 0], "max": [1, 1]},
+                 "fluid_blocks": [{"min": [0, 0], "max": [0.5, 0.5]}]}
+        try:
+            rtsph.scene(probe).with_overrides(out)
+        except ValueError as e:
+            return {}, f"{e}"
+    return out, ""
+
+
 def main(argv=None) -> int:
     ap = argparse.ArgumentParser(prog="rtsph validate", description="Run rtsph's validation cases and write a report.")
     ap.add_argument("cases", nargs="*", metavar="CASE", help=f"cases to run (default: all): {', '.join(CASES)}")
@@ -43,6 +73,10 @@ def main(argv=None) -> int:
     ap.add_argument("--jobs", type=int, default=1,
                     help="cases run at once, each in its own process (default 1); the figures are the "
                          "same bits whatever --jobs and --threads")
+    ap.add_argument("--set", action="append", default=[], metavar="KEY=VALUE", dest="overrides",
+                    help="a solver or fluid parameter for every scene of the run, over the case's own "
+                         "(as `rtsph run --set`; repeatable): e.g. solver.smoothing_ratio=1.3. Not "
+                         "fluid.spacing (the cases' levels choose it) nor the method or backend")
     ap.add_argument("--known-failures", action="store_true",
                     help="exit 0 when what fails is the quick level's known failures (rtsph/validate/known.py), "
                          "none worse than recorded, and none of them passes (the test command's run; quick, cpu)")
@@ -71,13 +105,21 @@ def main(argv=None) -> int:
     if args.known_failures and (level != "quick" or args.backend != "cpu"):
         print("rtsph validate: --known-failures records the quick level on the cpu backend only", file=sys.stderr)
         return 2
+    overrides, problem = _overrides(args.overrides)
+    if problem:
+        print(f"rtsph validate: --set {problem}", file=sys.stderr)
+        return 2
+    if args.known_failures and overrides:
+        print("rtsph validate: --known-failures records the default parameters; drop --set", file=sys.stderr)
+        return 2
     # The report is written at the end: an --out that cannot take it must stop the run before a
     # case runs, not after the full level's quarter of an hour.
     problem = _unwritable(args.out)
     if problem:
         print(f"rtsph validate: --out {args.out!r}: {problem}", file=sys.stderr)
         return 2
-    where = "" if args.backend == "cpu" else f", {args.backend}"
+    where = ("" if args.backend == "cpu" else f", {args.backend}") + \
+        "".join(f", {k}={v}" for k, v in overrides.items())
 
     def line(r, wall_s: float) -> str:
         status = "n/a" if not r.applicable else ("pass" if r.passed else "FAIL")
@@ -96,19 +138,19 @@ def main(argv=None) -> int:
               file=sys.stderr)
         results = run_parallel(cases, methods, level, threads, args.backend, args.jobs,
                                lambda r, w: print(f"rtsph validate: {r.case} ({r.method}{where}, {level})"
-                                                  f"{line(r, w)}", file=sys.stderr))
+                                                  f"{line(r, w)}", file=sys.stderr), overrides)
     else:
         results = []
         for case in cases:
             for m in methods:
                 t = time.perf_counter()
                 print(f"rtsph validate: {case} ({m}{where}, {level}) ...", end="", file=sys.stderr, flush=True)
-                r = run_case(case, m, level, threads, args.backend)
+                r = run_case(case, m, level, threads, args.backend, overrides)
                 results.append(r)
                 print(line(r, time.perf_counter() - t), file=sys.stderr)
     wall = time.perf_counter() - t0
     try:
-        write_report(args.out, results, level, threads, wall, args.backend, args.jobs)
+        write_report(args.out, results, level, threads, wall, args.backend, args.jobs, overrides)
     except OSError as e:  # the disk filled, or the directory went away, during the run
         print(f"rtsph validate: --out {args.out!r}: could not write the report ({e.strerror or e}); "
               "each case's figure is in the lines above", file=sys.stderr)

@@ -13,6 +13,10 @@ G = 9.81
 
 # Where the cases run: "cpu" or "gpu" (run_case sets it for the case it runs).
 _BACKEND = "cpu"
+# `rtsph validate --set KEY=VALUE`: parameters applied to every scene the case builds, over the
+# case's own (run_case sets them for the case it runs). What a case reads with another kernel or
+# viscosity, without a copy of the case.
+_OVERRIDES: Dict[str, str] = {}
 
 
 class NotOnBackend(Exception):
@@ -20,6 +24,8 @@ class NotOnBackend(Exception):
 
 
 def _simulation(scene, threads: int) -> "rtsph.Simulation":
+    if _OVERRIDES:
+        scene = rtsph.scene(scene).with_overrides(_OVERRIDES)
     try:
         return rtsph.Simulation(scene, threads=threads, backend=_BACKEND)
     except ValueError as e:

@@ -7,7 +7,7 @@ Levels: "quick" (coarse, for CI: the whole suite in a few minutes on two cores) 
 from __future__ import annotations
 
 import time
-from typing import Callable, Dict
+from typing import Callable, Dict, Optional
 
 import rtsph
 
@@ -37,8 +37,10 @@ CASES: Dict[str, Callable[[str, str, int], Result]] = {
 }
 
 
-def run_case(name: str, method: str, level: str, threads: int, backend: str = "cpu") -> Result:
+def run_case(name: str, method: str, level: str, threads: int, backend: str = "cpu",
+             overrides: Optional[Dict[str, str]] = None) -> Result:
     _common._BACKEND = backend
+    _common._OVERRIDES = dict(overrides or {})
     t0 = time.perf_counter()
     try:
         r = CASES[name](method, level, threads)

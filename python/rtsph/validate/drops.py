@@ -253,7 +253,7 @@ def _static_droplet_draw(method, dim, R, level, threads, draw):
     sim = _simulation(_droplet_scene(method, dim, R, s, DROPLET_NU[dim], f"validate_static_droplet_{dim}d",
                                      offset=_draw_offset(draw, dim, s)), threads)
     h = sim.stats["h"]
-    kernel = DROPLET_KERNEL[dim][0]
+    kernel = sim.scene.to_dict()["solver"]["kernel"]  # the case's, or `validate --set`'s
     mass = 1000.0 * s ** dim
     T, P_eos, P_vp, P_vc = [], [], [], []
 

@@ -15,7 +15,7 @@ from __future__ import annotations
 import multiprocessing
 import sys
 from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
-from typing import Callable, Dict, List, Sequence, Tuple
+from typing import Callable, Dict, List, Optional, Sequence, Tuple
 
 from .cases import Result, run_case
 
@@ -82,10 +82,11 @@ def _picklable_plots(r: Result) -> Result:
     return r
 
 
-def _run_task(task: Sequence[Tuple[str, str]], level: str, threads: int, backend: str) -> List[Result]:
+def _run_task(task: Sequence[Tuple[str, str]], level: str, threads: int, backend: str,
+              overrides: Optional[Dict[str, str]] = None) -> List[Result]:
     out = []
     for case, method in task:
-        r = run_case(case, method, level, threads, backend)
+        r = run_case(case, method, level, threads, backend, overrides)
         out.append(_picklable_plots(r))
     return out
 
@@ -104,14 +105,15 @@ def tasks_for(cases: Sequence[str], methods: Sequence[str]) -> List[List[Tuple[s
 
 
 def run_parallel(cases: Sequence[str], methods: Sequence[str], level: str, threads: int, backend: str,
-                 jobs: int, report: Callable[[Result, float], None]) -> List[Result]:
+                 jobs: int, report: Callable[[Result, float], None],
+                 overrides: Optional[Dict[str, str]] = None) -> List[Result]:
     """Runs every (case, method) in `jobs` processes and returns the results in the serial order;
     report(result, wall_s) is called as each finishes."""
     results: Dict[Tuple[str, str], Result] = {}
     # spawn, not fork: the parent may hold OpenMP or GL state that a forked child must not inherit.
     ctx = multiprocessing.get_context("spawn")
     with ProcessPoolExecutor(max_workers=jobs, mp_context=ctx) as pool:
-        pending = {pool.submit(_run_task, t, level, threads, backend) for t in tasks_for(cases, methods)}
+        pending = {pool.submit(_run_task, t, level, threads, backend, overrides) for t in tasks_for(cases, methods)}
         while pending:
             done, _ = wait(pending, return_when=FIRST_COMPLETED)
             for f in done:

@@ -11,7 +11,7 @@ import itertools
 import json
 import os
 import platform
-from typing import Dict, List
+from typing import Dict, List, Optional
 
 from .cases import Result
 from .known import KNOWN_FAILURES
@@ -67,12 +67,14 @@ def _fmt(x: float) -> str:
 
 
 def write_report(out: str, results: List[Result], level: str, threads: int, wall_s: float,
-                 backend: str = "cpu", jobs: int = 1) -> None:
+                 backend: str = "cpu", jobs: int = 1, overrides: Optional[Dict[str, str]] = None) -> None:
     os.makedirs(out, exist_ok=True)
+    overrides = dict(overrides or {})
 
     def known(r: Result) -> str:
-        """Why a quick CPU failure is a known one (known.py), else ''."""
-        k = KNOWN_FAILURES.get((r.case, r.method)) if level == "quick" and backend == "cpu" else None
+        """Why a quick CPU failure at the defaults is a known one (known.py), else ''."""
+        k = KNOWN_FAILURES.get((r.case, r.method)) if level == "quick" and backend == "cpu" and not overrides \
+            else None
         return k.why if k is not None and r.applicable and not r.passed else ""
 
     by_case: Dict[str, List[Result]] = {}
@@ -90,7 +92,7 @@ def write_report(out: str, results: List[Result], level: str, threads: int, wall
     meta = {"date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
             "level": level, "backend": backend, "threads": threads, "jobs": jobs, "wall_s": wall_s,
             "machine": f"{platform.machine()} {platform.processor() or ''}".strip(),
-            "cpus": os.cpu_count(), "python": platform.python_version()}
+            "cpus": os.cpu_count(), "python": platform.python_version(), "overrides": overrides}
     summary = {"meta": meta, "passed": all(r.passed or not r.applicable for r in results), "cases": [
         {"case": r.case, "method": r.method, "applicable": r.applicable, "passed": r.passed,
          "metric": r.metric, "error": r.error, "tolerance": r.tolerance, "particles": r.particles,
@@ -137,13 +139,16 @@ def write_report(out: str, results: List[Result], level: str, threads: int, wall
             f"<img src='data:image/png;base64,{base64.b64encode(png).decode()}'>"
             "<table><tr><th>method</th><th>result</th><th>error</th><th>particles</th><th>run time</th><th>notes</th></tr>"
             + "".join(lines) + "</table>")
+    set_args = "".join(f" --set {k}={v}" for k, v in overrides.items())
+    changed = ("<br><b>Parameters changed from every case's own (--set):</b> " +
+               html.escape(", ".join(f"{k} = {v}" for k, v in overrides.items()))) if overrides else ""
     page = f"""<!doctype html><html><head><meta charset="utf-8"><title>rtsph validation</title><style>
 body{{font-family:sans-serif;max-width:1100px;margin:2em auto;color:#222}} table{{border-collapse:collapse;margin:.5em 0}}
 td,th{{border:1px solid #ccc;padding:3px 8px;font-size:90%}} .pass{{background:#dfd}} .fail{{background:#fdd}}
 .na{{color:#888}} img{{max-width:100%}}</style></head><body>
 <h1>rtsph validation ({level}, {backend} backend)</h1>
 <p>{html.escape(meta['date'])}, {meta['cpus']} CPUs, {threads or 'all'} solver threads{f" in each of {jobs} jobs" if jobs > 1 else ""}, {wall_s:.0f} s in all.
-Every case: <code>rtsph validate --{level} --backend {backend}</code>; the narrative is docs/validation.md.</p>
+Every case: <code>rtsph validate --{level} --backend {backend}{html.escape(set_args)}</code>; the narrative is docs/validation.md.{changed}</p>
 <table><tr><th>case</th>{''.join(f'<th>{m}</th>' for m in methods)}</tr>{''.join(rows)}</table>
 {''.join(sections)}</body></html>"""
     with open(os.path.join(out, "report.html"), "w") as f:

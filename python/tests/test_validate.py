@@ -417,6 +417,24 @@ def test_the_standing_wave_reads_its_mode():
         assert mode_amplitude(water(A), k, s) == pytest.approx(A, rel=0.02)
 
 
+def test_the_standing_waves_velocity_carries_linear_theorys_energy():
+    # The case's energy budget is over the imposed field's kinetic energy: at the mode's zero
+    # crossing that is all of the wave's energy, (1/4) rho g A^2 L per unit width (0.245 J for
+    # 1 cm on 1 m), on a lattice of equal masses rho s^2; and the field has no divergence.
+    from rtsph.validate.waves import WAVE_A, WAVE_H, WAVE_L, mode_velocity, standing_wave_theory
+    k, w, _ = standing_wave_theory()
+    s = 0.0025
+    g = (np.arange(round(WAVE_L / s)) + 0.5) * s, (np.arange(round(WAVE_H / s)) + 0.5) * s
+    x = np.array([(a, b) for a in g[0] for b in g[1]])
+    v = mode_velocity(x, k, w).astype(np.float64)
+    kinetic = 0.5 * 1000 * s * s * np.sum(v * v)
+    assert kinetic == pytest.approx(0.25 * 1000 * 9.81 * WAVE_A ** 2 * WAVE_L, rel=0.01)
+    e = 1e-3  # float32 rows: a step well above their round-off
+    div = ((mode_velocity(x + [e, 0], k, w)[:, 0] - mode_velocity(x - [e, 0], k, w)[:, 0]).astype(np.float64)
+           + (mode_velocity(x + [0, e], k, w)[:, 1] - mode_velocity(x - [0, e], k, w)[:, 1])) / (2 * e)
+    assert np.max(np.abs(div)) < 1e-3 * WAVE_A * w * k
+
+
 def test_impact_figures_read_a_known_pulse():
     from rtsph.validate.dam_breaks import _impact_figures
     t = np.arange(0.38, 0.544, 0.001)

@@ -51,11 +51,14 @@ _SPH = ("H1, behind the box, is the worst probe: rtsph's slosh falls 0.1-0.4 s b
         "WCSPH 3.24-3.37 cm, PBF 3.45-3.80, DFSPH 3.38-3.80 (session 36). At the full 0.025 m PBF fails too")
 
 _WAVE = ("the default kernel (the cubic spline at h = s) damps gravity waves: on water settled at rest, the "
-         "amplitude after one period is 0.42-0.48 of the first's, at 20 or 40 layers deep. WCSPH needs its "
-         "α = 0.02 there (at h = s its Adami wall term runs away without it), and that α damps the wave; "
-         "at h = 1.3 s the walls hold without α and every method keeps 0.76-0.86 a period (docs/validation.md, "
-         "'A standing wave', sessions 36-38). The remedy, the default kernel's width, changes every case and "
-         "the cost of every step")
+         "amplitude after one period is 0.19-0.64 of the first's, at 20 or 40 layers deep, and the mode's energy "
+         "turns into particle noise in the whole tank within a quarter period. WCSPH needs its α = 0.02 there "
+         "(at h = s its Adami wall term runs away without it), and that α damps the noise; at h = 1.3 s the walls "
+         "hold without α and every method keeps 0.76-0.86 a period (docs/validation.md, 'A standing wave', "
+         "sessions 36-39). The remedy, the default kernel's width, changes every case and the cost of every step. "
+         "The figure is that noise's: the recorded one is the median of seven round-off draws (the AMD EPYC "
+         "guest's run, session 38, and six with gravity nudged by 0-5e-7 on the Intel Xeon guest, session 39), "
+         "which read WCSPH 0.44-0.89, PBF 0.62-0.97, DFSPH 0.49-0.84")
 
 # The static drops' figures are means over lattice draws (drops.DROPLET_DRAWS), each with its
 # standard uncertainty from the draws' spread (the report's notes).
@@ -67,9 +70,9 @@ KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
                                                 "lattice the high one) and read low against WCSPH's 32.2 and "
                                                 "PBF's 34.1; was 0.115 before the 2D drops ran 8 s (session 34)",
                                           margin=1.3, noisy=True),
-    ("standing_wave_2d", "wcsph"): Known(0.444, _WAVE),
-    ("standing_wave_2d", "pbf"): Known(0.763, _WAVE),
-    ("standing_wave_2d", "dfsph"): Known(0.838, _WAVE),
+    ("standing_wave_2d", "wcsph"): Known(0.738, _WAVE, margin=1.5),
+    ("standing_wave_2d", "pbf"): Known(0.906, _WAVE, margin=1.5),
+    ("standing_wave_2d", "dfsph"): Known(0.664, _WAVE, margin=1.5),
     ("spheric_test2_3d", "wcsph"): Known(0.0329, _SPH),
     ("spheric_test2_3d", "pbf"): Known(0.0360, _SPH),
     ("spheric_test2_3d", "dfsph"): Known(0.0357, _SPH),

@@ -9,7 +9,8 @@ cd "$(dirname "$0")/.."
 scripts/setup.sh release
 ctest --preset release -j1 "$@"
 # The Python package, installed into a fresh virtual environment and tested with pytest; then
-# the validation suite at its quick level (about 6 minutes on 2 cores), held to its tolerances
+# the validation suite at its quick level (17-21 minutes on 2 cores, 91% of it the surface-tension
+# drops; docs/performance.md, session 40), held to its tolerances
 # except for the known failures python/rtsph/validate/known.py lists, which may not get worse.
 # Two one-thread jobs: most quick cases are too small for two solver threads, and the figures
 # are the same bits for any thread count.

@@ -486,3 +486,51 @@ def test_jobs_start_the_longest_task_first():
     assert [t[0] for t in tasks[6:]] == [("hydrostatic_2d", m) for m in methods]
     assert sorted(x for t in tasks for x in t) == sorted(
         (c, m) for c in ["hydrostatic_2d", "static_droplet_2d", "static_droplet_3d", "oscillating_droplet_2d"] for m in methods)
+
+
+def test_jobs_run_a_drops_draws_as_tasks_of_their_own():
+    # The parts (a static drop's lattice draws) start first, task by task in the tasks' order and
+    # each task's largest drop first; the oscillating drop shares its static drop's draws.
+    from rtsph.validate.parallel import schedule
+    methods = ["wcsph", "pbf", "dfsph"]
+    tasks, needs, order = schedule(["hydrostatic_2d", "static_droplet_2d", "oscillating_droplet_2d"], methods, "quick")
+    assert tasks[0] == [("static_droplet_2d", "dfsph"), ("oscillating_droplet_2d", "dfsph")]
+    assert needs[0] == sorted(validate.cases.part_keys("static_droplet_2d", "dfsph", "quick"))
+    assert set(validate.cases.part_keys("oscillating_droplet_2d", "dfsph", "quick")) < set(needs[0])
+    assert order[0][:3] == ("dfsph", 2, 0.1) and order[len(needs[0])][:3] == ("wcsph", 2, 0.1)
+    assert len(order) == len(set(order)) == sum(len(n) for n in needs)
+    assert [n for t, n in zip(tasks, needs) if t[0][0] == "hydrostatic_2d"] == [[], [], []]
+    # A case alone keeps its parts (the oscillating drop calibrates on the static drop's R1 draws).
+    _, needs, _ = schedule(["oscillating_droplet_2d"], ["pbf"], "quick")
+    assert needs == [sorted(validate.cases.part_keys("oscillating_droplet_2d", "pbf", "quick"))] and needs[0]
+
+
+def test_a_drop_seeded_with_its_draws_reads_as_the_drop_run_whole(monkeypatch):
+    # What a worker process receives: each draw run by run_part, then the case seeded with them.
+    # It must give the figures of the case run in one piece, without running a draw again, and
+    # count the draws' time in its own. A small drop, briefly: the mechanism, not the physics.
+    from rtsph.validate import cases, drops
+    monkeypatch.setitem(drops.DROPLET_LEVELS, 2, {"quick": (0.01, 0.3), "full": (0.01, 0.3)})
+    monkeypatch.setitem(drops.DROPLET_DRAWS, "quick", {2: (3, 2), 3: (1, 1)})
+    monkeypatch.setattr(drops, "_SIGMA_CACHE", {})
+    monkeypatch.setattr(drops, "_DRAWS", {})
+    whole = cases.run_case("static_droplet_2d", "wcsph", "quick", 1)
+    keys = cases.part_keys("static_droplet_2d", "wcsph", "quick")
+    assert len(keys) == 5
+    parts = {k: cases.run_part(k, 1) for k in keys}
+    drops._SIGMA_CACHE.clear()
+
+    def no_run(*args, **kwargs):
+        raise AssertionError("a seeded draw ran again")
+    monkeypatch.setattr(drops, "_simulation", no_run)
+    seeded = cases.run_case("static_droplet_2d", "wcsph", "quick", 1, parts=parts)
+    assert np.isfinite(whole.error)
+    def figures(r):  # NaN-aware: the early samples' virials are NaN by design
+        return json.dumps([r.error, r.extra, r.series, r.notes, r.particles], sort_keys=True)
+    assert figures(seeded) == figures(whole)
+    assert seeded.wall_s >= sum(v[4] for v in parts.values()) > 0
+    # Seeds belong to the context they were given in: under other --set parameters, in the same
+    # process, the draws run again.
+    drops._SIGMA_CACHE.clear()
+    with pytest.raises(AssertionError, match="ran again"):
+        cases.run_case("static_droplet_2d", "wcsph", "quick", 1, "cpu", {"solver.smoothing_ratio": "2.1"})

@@ -1,5 +1,5 @@
 """The validation cases. Each takes (method, level, threads) and returns a Result; the cases
-live in one module per family (tanks, dam_breaks, channels, drops, elliptical, waves), what they share in _common.
+live in one module per family (tanks, dam_breaks, channels, drops, oscillating, elliptical, waves), what they share in _common.
 
 Levels: "quick" (coarse, for CI: the whole suite in a few minutes on two cores) and "full"
 (the report's resolution, with a convergence study where the issue asks for one).
@@ -7,16 +7,17 @@ Levels: "quick" (coarse, for CI: the whole suite in a few minutes on two cores) 
 from __future__ import annotations
 
 import time
-from typing import Callable, Dict, Optional
+from typing import Callable, Dict, List, Optional
 
 import rtsph
 
-from . import _common
+from . import _common, drops
 from ._common import NotOnBackend, Result, _order  # noqa: F401
 from .channels import couette, couette_exact, poiseuille, taylor_green  # noqa: F401
 from .dam_breaks import MARTIN_MOYCE_HEIGHT, _height_error, _spheric_data, dam_break, spheric_test2  # noqa: F401
-from .drops import _ball_blocks, _virial_pressures, oscillating_droplet, static_droplet  # noqa: F401
+from .drops import _ball_blocks, _virial_pressures, static_droplet  # noqa: F401
 from .elliptical import elliptical_drop, elliptical_drop_exact  # noqa: F401
+from .oscillating import oscillating_droplet
 from .tanks import hydrostatic, still_water
 from .waves import standing_wave
 
@@ -37,10 +38,40 @@ CASES: Dict[str, Callable[[str, str, int], Result]] = {
 }
 
 
-def run_case(name: str, method: str, level: str, threads: int, backend: str = "cpu",
-             overrides: Optional[Dict[str, str]] = None) -> Result:
+def set_context(backend: str = "cpu", overrides: Optional[Dict[str, str]] = None) -> None:
+    """Where the cases this process runs next run: the backend and `--set`'s parameters."""
     _common._BACKEND = backend
     _common._OVERRIDES = dict(overrides or {})
+
+
+# Parts: independent runs inside a case that `--jobs` runs as tasks of their own, the case then
+# seeded with their results (drops.py: a static drop's lattice draws). By key, so that cases that
+# share parts (the oscillating drop reuses the static drop's calibration) run each once.
+def part_keys(name: str, method: str, level: str) -> List[tuple]:
+    return drops.draw_keys(name, method, level)
+
+
+def part_cost(key: tuple) -> float:
+    """A part's cost relative to the others', to start the longest first."""
+    return drops.draw_cost(key)
+
+
+def run_part(key: tuple, threads: int, backend: str = "cpu", overrides: Optional[Dict[str, str]] = None):
+    set_context(backend, overrides)
+    return drops.run_draw(key, threads)
+
+
+def seed_parts(results: Dict[tuple, object]) -> None:
+    """Installs parts run elsewhere for the cases this process runs next (after set_context)."""
+    drops.seed_draws(results)
+
+
+def run_case(name: str, method: str, level: str, threads: int, backend: str = "cpu",
+             overrides: Optional[Dict[str, str]] = None, parts: Optional[Dict[tuple, object]] = None) -> Result:
+    """Runs one case with one method; `parts` are its parts' results from other processes."""
+    set_context(backend, overrides)
+    if parts:
+        seed_parts(parts)
     t0 = time.perf_counter()
     try:
         r = CASES[name](method, level, threads)

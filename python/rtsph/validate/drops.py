@@ -1,15 +1,17 @@
-"""Droplets held by surface tension: Laplace's pressure jump and Rayleigh's oscillation (Monaghan's
-elliptical drop, with no surface tension, is in elliptical.py)."""
+"""Droplets held by surface tension: Laplace's pressure jump, and the σ(γ) it calibrates for
+Rayleigh's oscillation (oscillating.py; Monaghan's elliptical drop, with no surface tension, is in
+elliptical.py)."""
 from __future__ import annotations
 
 import math
 import time
-from typing import Dict, Tuple
+from typing import Dict
 
 import numpy as np
 
 import rtsph
 
+from . import _common
 from ._common import Result, _finish, _simulation
 
 
@@ -130,7 +132,18 @@ def _draws(method: str, dim: int, level: str):
     return n1, n2
 
 
-_SIGMA_CACHE: Dict[Tuple[str, int, str, int], dict] = {}
+_SIGMA_CACHE: Dict[tuple, dict] = {}
+# One static drop's run (_static_droplet_draw) by its key (method, dim, R, level, draw) and the
+# context it ran in (backend and --set overrides). `--jobs` runs each draw as a task of its own
+# (draw_keys, run_draw) and seeds the drop's case with the results (seed_draws): a case's draws
+# are 4-32 independent runs of 2-190 s, and as one task the longest (DFSPH's 2D drop, 757 s in
+# session 40) was a floor for any number of jobs. Every method gives the same bits for any thread
+# count and process, so a seeded draw is the draw the case would have run.
+_DRAWS: Dict[tuple, tuple] = {}
+
+
+def _context() -> tuple:
+    return (_common._BACKEND, tuple(sorted(_common._OVERRIDES.items())))
 
 
 def _ball_blocks(dim: int, R: float, s: float, stretch: float = 1.0, offset=None):
@@ -248,7 +261,12 @@ def _mean_pressure_and_density(sim, steps: int = PRESSURE_STEPS):
 def _static_droplet_draw(method, dim, R, level, threads, draw):
     """Pressure jump of one drop at rest (lattice draw `draw`): core (r < R/2) mean of the
     pressure-force and cohesion virials, averaged over the last third of the run; each sample's
-    pressure a mean over PRESSURE_STEPS steps."""
+    pressure a mean over PRESSURE_STEPS steps. Returns (particles, jump, EOS pressure, series,
+    wall time in s, whether it was seeded); a seeded draw is not run again."""
+    key = ((method, dim, R, level, draw), _context())
+    if key in _DRAWS:
+        return _DRAWS[key] + (True,)
+    t0 = time.perf_counter()
     s, t_end = DROPLET_LEVELS[dim][level]
     sim = _simulation(_droplet_scene(method, dim, R, s, DROPLET_NU[dim], f"validate_static_droplet_{dim}d",
                                      offset=_draw_offset(draw, dim, s)), threads)
@@ -275,30 +293,76 @@ def _static_droplet_draw(method, dim, R, level, threads, draw):
     total = P_vp + P_vc
     return sim.particle_count, float(np.mean(total[late])), float(np.mean(P_eos[late])), \
         {"t_s": list(T), "p_eos_pa": list(P_eos), "p_pressure_virial_pa": list(P_vp),
-         "p_cohesion_virial_pa": list(P_vc), "p_total_pa": list(total)}
+         "p_cohesion_virial_pa": list(P_vc), "p_total_pa": list(total)}, time.perf_counter() - t0, False
+
+
+def draw_keys(case: str, method: str, level: str):
+    """The static drops a case's run needs, as keys for run_draw: (method, dim, R, level, draw)."""
+    dim = {"static_droplet_2d": 2, "static_droplet_3d": 3, "oscillating_droplet_2d": 2}.get(case)
+    if dim is None:
+        return []
+    n1, n2 = _draws(method, dim, level)
+    keys = [(method, dim, DROPLET_R1, level, k) for k in range(n1)]
+    return keys + ([(method, dim, 2 * DROPLET_R1, level, k) for k in range(n2)] if case.startswith("static") else [])
+
+
+def draw_cost(key) -> float:
+    """A draw's relative cost, to start the longest first: its particles (the drop's area or
+    volume over the spacing's) times the steps per simulated second each method takes relative to
+    WCSPH's in 2D. The factors are the quick level's per-particle draw times on two cores (session
+    34: DFSPH's 2D drop 3.4 times WCSPH's, PBF's half; the 3D drops 0.3-0.35 of WCSPH's 2D per
+    particle); only their order matters."""
+    method, dim, R, level, _ = key
+    s, t_end = DROPLET_LEVELS[dim][level]
+    n = math.pi * R * R / s ** 2 if dim == 2 else 4 / 3 * math.pi * R ** 3 / s ** 3
+    factor = {(2, "dfsph"): 3.4, (2, "wcsph"): 1.0, (2, "pbf"): 0.5}.get((dim, method), 0.35)
+    return n * t_end * factor
+
+
+def run_draw(key, threads: int):
+    """Runs one static drop (key from draw_keys) in this process's context; None if the engine
+    stopped it (the case, run with it unseeded, then reports the engine's diagnostic)."""
+    try:
+        return _static_droplet_draw(*key[:4], threads, key[4])[:5]
+    except (rtsph.InstabilityError, RuntimeError, ValueError):
+        return None
+
+
+def seed_draws(results) -> None:
+    """Installs draws run elsewhere (run_draw's results by key) for this process's cases."""
+    for key, value in results.items():
+        if value is not None:
+            _DRAWS[(tuple(key), _context())] = tuple(value)
 
 
 def _static_droplet_run(method, dim, R, level, threads, draws):
     """The jump at radius R: the mean over `draws` lattice draws. Returns the particles of all
     draws, the mean jump, the mean EOS pressure, the standard error of the mean jump, the per-draw
-    jumps, and draw 0's time series (for the plot)."""
+    jumps, draw 0's time series (for the plot), and the wall time of the draws run elsewhere."""
     runs = [_static_droplet_draw(method, dim, R, level, threads, k) for k in range(draws)]
     jumps = np.array([r[1] for r in runs])
     sem = float(np.std(jumps, ddof=1) / math.sqrt(len(jumps))) if len(jumps) > 1 else float("nan")
     return sum(r[0] for r in runs), float(np.mean(jumps)), float(np.mean([r[2] for r in runs])), sem, \
-        [float(j) for j in jumps], runs[0][3]
+        [float(j) for j in jumps], runs[0][3], sum(r[4] for r in runs if r[5])
 
 
 def calibrate_sigma(method: str, dim: int, level: str, threads: int) -> dict:
     """σ(γ) from the static droplet at R1 (Laplace), once per method, dimension and level."""
-    key = (method, dim, level, threads)
+    key = (method, dim, level, _context())
     if key not in _SIGMA_CACHE:
-        particles, dp, dp_eos, sem, jumps, series = _static_droplet_run(method, dim, DROPLET_R1, level, threads,
-                                                                      _draws(method, dim, level)[0])
+        particles, dp, dp_eos, sem, jumps, series, seeded_s = _static_droplet_run(
+            method, dim, DROPLET_R1, level, threads, _draws(method, dim, level)[0])
         factor = 1.0 if dim == 2 else 2.0
         _SIGMA_CACHE[key] = {"sigma": dp * DROPLET_R1 / factor, "dp": dp, "dp_eos": dp_eos, "dp_sem": sem,
-                             "jumps": jumps, "series": series, "particles": particles}
-    return _SIGMA_CACHE[key]
+                             "jumps": jumps, "series": series, "particles": particles, "seeded_s": seeded_s}
+        return dict(_SIGMA_CACHE[key], fresh=True)
+    return dict(_SIGMA_CACHE[key], fresh=False)
+
+
+def _seeded_s(cal: dict) -> float:
+    """The wall time of the calibration's draws that ran in other processes, counted by the case
+    that calibrated (the oscillating drop after it reuses σ at no cost, as in one process)."""
+    return cal["seeded_s"] if cal["fresh"] else 0.0
 
 
 def static_droplet(dim: int):
@@ -308,8 +372,8 @@ def static_droplet(dim: int):
         factor = 1.0 if dim == 2 else 2.0
         t0 = time.perf_counter()
         cal = calibrate_sigma(method, dim, level, threads)
-        particles2, dp2, dp2_eos, sem2, jumps2, series2 = _static_droplet_run(method, dim, R2, level, threads,
-                                                                       _draws(method, dim, level)[1])
+        particles2, dp2, dp2_eos, sem2, jumps2, series2, seeded2_s = _static_droplet_run(
+            method, dim, R2, level, threads, _draws(method, dim, level)[1])
         sigma = cal["sigma"]
         predicted = factor * sigma / R2
         err = abs(dp2 / predicted - 1) if np.isfinite(dp2) and predicted != 0 else float("inf")
@@ -322,7 +386,7 @@ def static_droplet(dim: int):
         r = Result(case=f"static_droplet_{dim}d", method=method,
                    metric=f"relative error of the predicted pressure jump at R2 = 2·R1 (Laplace {law}, σ calibrated at R1)",
                    error=err, tolerance=LAPLACE_TOL, particles=cal["particles"] + particles2,
-                   wall_s=time.perf_counter() - t0,
+                   wall_s=time.perf_counter() - t0 + _seeded_s(cal) + seeded2_s,
                    setup=(f"{dim}D drop in zero gravity, R1 = {R1} m, R2 = {R2} m, spacing {s} m, {_kernel_text(method, dim)}, "
                           f"γ = {DROPLET_GAMMA}, "
                           f"c0 = {DROPLET_C0} m/s, ν = {DROPLET_NU[dim]} m²/s, {t_end} s, jump averaged over the "
@@ -364,13 +428,6 @@ def static_droplet(dim: int):
     return run
 
 
-OSC_STRETCH = 1.1            # semi-axes 1.1·R and R/1.1 (area kept)
-OSC_NU = 1e-4                # m²/s: light damping while the period is measured
-OSC_LEVELS = {"quick": 2.0, "full": 3.0}  # s of free oscillation
-OSC_REST_S = 1.5             # s more with ν = DROPLET_NU[2] (a live change) to bring it to rest
-PERIOD_TOL, CIRCULARITY_MIN = 0.15, 0.98
-
-
 def _semi_axes(x):
     """Semi-axes of the uniform ellipse with the particles' second moments (a = 2√λ)."""
     d = x - x.mean(0)
@@ -390,53 +447,3 @@ def _track_semi_axes(sim, until: float, every: float):
         AY.append(ay_)
     sim.run(until=until, every=every, callback=record)
     return np.array(T), np.array(AX), np.array(AY)
-
-
-def oscillating_droplet(method: str, level: str, threads: int) -> Result:
-    R = DROPLET_R1
-    s, _ = DROPLET_LEVELS[2][level]
-    t_osc = OSC_LEVELS[level]
-    t0 = time.perf_counter()
-    cal = calibrate_sigma(method, 2, level, threads)
-    sigma = cal["sigma"]
-    rho0 = 1000.0
-    omega2 = 6 * sigma / (rho0 * R ** 3) if sigma > 0 else float("nan")
-    period_ref = 2 * math.pi / math.sqrt(omega2) if omega2 > 0 else float("nan")
-    sim = _simulation(_droplet_scene(method, 2, R, s, OSC_NU, "validate_oscillating_droplet_2d", OSC_STRETCH),
-                      threads)
-    T, AX, AY = _track_semi_axes(sim, until=t_osc, every=0.005)
-    # Period from the crossings of a_x − a_y through its mean (mode 2: the axes swap each half
-    # period; the mean is 0 for a drop that relaxes to a circle, and a shape that locks short of
-    # round still gives the period of what it does).
-    e = AX - AY
-    e = e - float(np.mean(e))
-    cross = [T[i] - e[i] * (T[i + 1] - T[i]) / (e[i + 1] - e[i]) for i in range(len(e) - 1) if e[i] * e[i + 1] < 0]
-    period = 2 * float(np.mean(np.diff(cross))) if len(cross) >= 3 else float("nan")
-    # Then to rest: viscosity raised live (the viewer's slider) and the shape measured.
-    sim.set_parameter("fluid.viscosity", DROPLET_NU[2])
-    sim.run(until=t_osc + OSC_REST_S)
-    a, b, _, _ = _semi_axes(sim.positions.astype(np.float64))
-    circ = b / a
-    period_err = abs(period / period_ref - 1) if np.isfinite(period) else float("inf")
-    worst = max(period_err / PERIOD_TOL, max(0.0, 1 - circ) / (1 - CIRCULARITY_MIN))
-    r = Result(case="oscillating_droplet_2d", method=method,
-               metric="worst of: period error / 15%, (1 − circularity at rest) / 0.02",
-               error=worst, tolerance=1.0, particles=sim.particle_count, wall_s=time.perf_counter() - t0,
-               setup=(f"2D drop R = {R} m stretched to semi-axes {OSC_STRETCH}·R and R/{OSC_STRETCH}, zero gravity, "
-                      f"spacing {s} m, {_kernel_text(method, 2)}, γ = {DROPLET_GAMMA}, ν = {OSC_NU} m²/s for {t_osc} s, then ν = "
-                      f"{DROPLET_NU[2]} m²/s for {OSC_REST_S} s to rest"),
-               reference="Rayleigh's mode 2: ω² = 6σ/(ρR³), σ from the static 2D droplet's calibration",
-               notes=(f"σ = {sigma:.4g} N/m (static droplet at R = {R} m): predicted period {period_ref:.4g} s, "
-                      f"measured {period:.4g} s ({100 * (period / period_ref - 1):+.1f}%, {len(cross)} axis "
-                      f"crossings); circularity b/a at rest {circ:.4f} (bound {CIRCULARITY_MIN})"),
-               series={"t_s": list(T), "a_x_m": list(AX), "a_y_m": list(AY)},
-               extra={"period_s": period, "period_predicted_s": period_ref, "period_error": period_err,
-                      "circularity_at_rest": circ, "sigma": sigma})
-
-    def plot(ax, res):
-        ax.plot(res.series["t_s"], np.array(res.series["a_x_m"]) / R, "-", label=f"{res.method}: a_x/R")
-        ax.plot(res.series["t_s"], np.array(res.series["a_y_m"]) / R, "--", label=f"{res.method}: a_y/R")
-        ax.set_xlabel("t (s)")
-        ax.set_ylabel("semi-axis / R")
-    r.plot = plot
-    return _finish(r)

@@ -11,7 +11,7 @@ import time
 
 from . import CASES, METHODS, run_case
 from .known import judge
-from .parallel import run_parallel
+from .parallel import run_parallel, schedule
 from .report import write_report
 
 
@@ -134,7 +134,9 @@ def main(argv=None) -> int:
         threads = max(1, (os.cpu_count() or 1) // args.jobs)
     t0 = time.perf_counter()
     if args.jobs > 1:
-        print(f"rtsph validate: {args.jobs} jobs of {threads} solver thread(s); a line as each case ends",
+        parts = len(schedule(cases, methods, level)[2])
+        first = f"; {parts} drops' lattice draws run first" if parts else ""
+        print(f"rtsph validate: {args.jobs} jobs of {threads} solver thread(s){first}; a line as each case ends",
               file=sys.stderr)
         results = run_parallel(cases, methods, level, threads, args.backend, args.jobs,
                                lambda r, w: print(f"rtsph validate: {r.case} ({r.method}{where}, {level})"

@@ -221,6 +221,26 @@ def test_lattice_draws_shift_the_lattice_and_fill_the_ball(dim):
                 assert abs((b["min"][a] - o[a]) / s - round((b["min"][a] - o[a]) / s)) < 1e-9
 
 
+# The quick level halves the draws only where QUICK_HALVED says; the full level keeps every draw
+# (DFSPH's 2D R2 apart), and the oscillating drop calibrates on its static drop's R1 draws.
+def test_the_quick_level_halves_only_the_listed_draws():
+    from rtsph.validate import drops
+    for dim in (2, 3):
+        for m in ("wcsph", "pbf", "dfsph"):
+            n1, n2 = drops.DROPLET_DRAWS["full"][dim]
+            assert drops._draws(m, dim, "full") == (n1, n2 // 2 if (m, dim) == ("dfsph", 2) else n2)
+            q1, q2 = drops.DROPLET_DRAWS["quick"][dim]
+            if (m, dim) == ("dfsph", 2):
+                q2 //= 2
+            h1, h2 = drops.QUICK_HALVED.get((dim, m), (False, False))
+            assert drops._draws(m, dim, "quick") == (q1 // 2 if h1 else q1, q2 // 2 if h2 else q2)
+            osc = drops.draw_keys("oscillating_droplet_2d", m, "quick") if dim == 2 else []
+            static = drops.draw_keys(f"static_droplet_{dim}d", m, "quick")
+            assert len(static) == sum(drops._draws(m, dim, "quick"))
+            assert all(k in static for k in osc)
+    assert drops._draws("dfsph", 2, "quick") == (8, 2) and drops._draws("pbf", 3, "quick") == (32, 8)
+
+
 # A drop's pressure sample is the mean over consecutive steps (DFSPH's step pressure cycles at
 # rest): each particle's mean of what stepping one by one reads, the simulation left on the last
 # of those steps. Two runs of the same scene give the same bits, so one steps by hand.
@@ -307,7 +327,6 @@ def test_couette_reference():
 
 
 def test_issue_13_cases_run():
-    import numpy as np
     r = validate.CASES["elliptical_drop_2d"]("dfsph", "quick", 2)
     assert r.passed and r.tolerance == 0.02 and list(r.series)[:3] == ["t_s", "b_m", "b_exact_m"]
     # The plate drags the fluid (with its top row culled it did not: 92%), with no slip on its
@@ -512,6 +531,7 @@ def test_a_drop_seeded_with_its_draws_reads_as_the_drop_run_whole(monkeypatch):
     from rtsph.validate import cases, drops
     monkeypatch.setitem(drops.DROPLET_LEVELS, 2, {"quick": (0.01, 0.3), "full": (0.01, 0.3)})
     monkeypatch.setitem(drops.DROPLET_DRAWS, "quick", {2: (3, 2), 3: (1, 1)})
+    monkeypatch.setattr(drops, "QUICK_HALVED", {})
     monkeypatch.setattr(drops, "_SIGMA_CACHE", {})
     monkeypatch.setattr(drops, "_DRAWS", {})
     whole = cases.run_case("static_droplet_2d", "wcsph", "quick", 1)

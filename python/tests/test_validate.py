@@ -221,24 +221,22 @@ def test_lattice_draws_shift_the_lattice_and_fill_the_ball(dim):
                 assert abs((b["min"][a] - o[a]) / s - round((b["min"][a] - o[a]) / s)) < 1e-9
 
 
-# The quick level halves the draws only where QUICK_HALVED says; the full level keeps every draw
-# (DFSPH's 2D R2 apart), and the oscillating drop calibrates on its static drop's R1 draws.
+# The draws each method's drops take, (R1, R2): the quick level halves them only where a method's
+# draws agree (drops.QUICK_HALVED, docs/validation.md "Half the draws"); the full level keeps
+# every draw (DFSPH's 2D R2 apart); the oscillating drop calibrates on its static drop's R1 draws.
 def test_the_quick_level_halves_only_the_listed_draws():
     from rtsph.validate import drops
-    for dim in (2, 3):
-        for m in ("wcsph", "pbf", "dfsph"):
-            n1, n2 = drops.DROPLET_DRAWS["full"][dim]
-            assert drops._draws(m, dim, "full") == (n1, n2 // 2 if (m, dim) == ("dfsph", 2) else n2)
-            q1, q2 = drops.DROPLET_DRAWS["quick"][dim]
-            if (m, dim) == ("dfsph", 2):
-                q2 //= 2
-            h1, h2 = drops.QUICK_HALVED.get((dim, m), (False, False))
-            assert drops._draws(m, dim, "quick") == (q1 // 2 if h1 else q1, q2 // 2 if h2 else q2)
-            osc = drops.draw_keys("oscillating_droplet_2d", m, "quick") if dim == 2 else []
-            static = drops.draw_keys(f"static_droplet_{dim}d", m, "quick")
-            assert len(static) == sum(drops._draws(m, dim, "quick"))
-            assert all(k in static for k in osc)
-    assert drops._draws("dfsph", 2, "quick") == (8, 2) and drops._draws("pbf", 3, "quick") == (32, 8)
+    quick = {(2, "wcsph"): (4, 2), (2, "pbf"): (4, 2), (2, "dfsph"): (8, 2),
+             (3, "wcsph"): (32, 4), (3, "pbf"): (32, 8), (3, "dfsph"): (32, 4)}
+    full = {(2, "wcsph"): (8, 4), (2, "pbf"): (8, 4), (2, "dfsph"): (8, 2),
+            (3, "wcsph"): (16, 4), (3, "pbf"): (16, 4), (3, "dfsph"): (16, 4)}
+    for (dim, m), draws in quick.items():
+        assert drops._draws(m, dim, "quick") == draws and drops._draws(m, dim, "full") == full[(dim, m)]
+        static = drops.draw_keys(f"static_droplet_{dim}d", m, "quick")
+        assert len(static) == sum(draws)
+        if dim == 2:
+            osc = drops.draw_keys("oscillating_droplet_2d", m, "quick")
+            assert len(osc) == draws[0] and all(k in static for k in osc)
 
 
 # A drop's pressure sample is the mean over consecutive steps (DFSPH's step pressure cycles at

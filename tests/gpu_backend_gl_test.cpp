@@ -127,7 +127,12 @@ TEST_P(GpuMethods, DamBreakFollowsTheCpuFor200Steps) {
     // apart there). So PBF's front is held to 2%, WCSPH's and DFSPH's to 1%.
     EXPECT_NEAR(fg, fc, (pbf ? 0.02 : 0.01) * fc);
     EXPECT_NEAR(max_err_gpu, max_err_cpu, 0.005);
-    EXPECT_NEAR(gpu->time(), cpu->time(), 0.01 * cpu->time());
+    // The time after 200 steps follows the fastest particle of the splash against the far wall
+    // (the step's CFL bound) and is chaotic there: the CPU alone, with gravity nudged by 1e-8 to
+    // 3e-8 of itself, read 0.4686-0.4735 s in 3D with DFSPH (session 44, after the container
+    // walls took the lattice's volume; 0.4548 s in all four draws before), and the GPU 0.4687.
+    // So the bound is 2%, above the reference's own round-off spread.
+    EXPECT_NEAR(gpu->time(), cpu->time(), 0.02 * cpu->time());
     EXPECT_EQ(gpu->stats().particles_put_back, cpu->stats().particles_put_back);
   }
 }
@@ -343,9 +348,13 @@ TEST_F(GpuBackend, WcsphTankSettlesToRhoGH) {
   test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "wcsph", 0.05, 0,
                                [](const SimSpec& s) { return gpu::make_gpu_simulation(s, 1); });
 }
-// PBF at the stable Jacobi weight and 5%, as the CPU's (tests/physics_hydrostatic_test.cpp says why).
+// PBF at the stable Jacobi weight (tests/physics_hydrostatic_test.cpp says why). Its bottom row's
+// figure moves by a percent with round-off: with gravity nudged by 0, 1e-7 and 3e-7 of itself the
+// GPU (llvmpipe) read 1.0549, 1.0478 and 1.0375, the CPU 1.0312, 1.0302 and 1.0269 (session 44,
+// the lattice wall volumes), and before those walls 1.0404, 1.0307, 1.0288 and 1.0419, 1.0449,
+// 1.0480. The CPU's 5% leaves no room for that spread on the GPU: 6%.
 TEST_F(GpuBackend, PbfTankSettlesToRhoGH) {
-  test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "pbf", 0.05, 3.0, [](const SimSpec& s) {
+  test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "pbf", 0.06, 3.0, [](const SimSpec& s) {
     SimSpec spec = s;
     spec.pbf_omega = 0;
     return gpu::make_gpu_simulation(spec, 1);

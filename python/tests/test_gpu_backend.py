@@ -33,12 +33,17 @@ def _gpu(scene, **kw):
 # on AMD hosts, 6.6e-7 m on an Intel one); DFSPH alike (7.2e-7 m, Intel); PBF's four Jacobi
 # iterations per substep amplify the round-off, which differs by host (-march=native; the CPU's
 # rsqrt and rcp approximations are the vendor's): 1.8e-5 m (AMD) and 5.6e-5 m (Intel) over 20
-# substeps (0.083 s, in which free fall covers 3.4 cm), so within 1e-4 m, 2.5e-3 of the 0.04 m
-# spacing. Density follows: ρ
-# changes by about ρ0/spacing per metre, so PBF's densities agree to 3e-3 of ρ0 (measured 5.6e-4
-# AMD, 1.3e-3 Intel), WCSPH's and DFSPH's to 1e-4 (8.3e-6 and 1.3e-5, Intel).
+# substeps (0.083 s, in which free fall covers 3.4 cm). Since the container's walls carry the
+# lattice's volume (session 44) the column collapses along another trajectory, one that amplifies
+# round-off faster from the 17th substep on: 1.2e-4 m on the AMD host at the 20th; the CPU alone,
+# with gravity nudged by 1e-7 of itself, moves by 1.2e-5 m at the 20th and 5.9e-4 m at the 40th
+# (2.3e-5 and 3.0e-5 with the old walls; at a 0.05 m spacing the old walls' run is the one that
+# grows). So within 2e-4 m, 5e-3 of the 0.04 m spacing. Density follows: ρ
+# changes by about ρ0/spacing per metre, so PBF's densities agree to 5e-3 of ρ0 (measured 5.6e-4
+# AMD, 1.3e-3 Intel; 3.2e-3 AMD since session 44), WCSPH's and DFSPH's to 1e-4 (8.3e-6 and 1.3e-5,
+# Intel).
 @pytest.mark.parametrize("method,tolerance_m,density_rel",
-                         [("wcsph", 1e-6, 1e-4), ("pbf", 1e-4, 3e-3), ("dfsph", 5e-6, 1e-4)])
+                         [("wcsph", 1e-6, 1e-4), ("pbf", 2e-4, 5e-3), ("dfsph", 5e-6, 1e-4)])
 def test_gpu_steps_as_the_cpu_does(method, tolerance_m, density_rel):
     g = _gpu(_scene(method))
     c = rtsph.Simulation(_scene(method), threads=1)

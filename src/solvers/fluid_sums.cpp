@@ -326,6 +326,20 @@ void FluidWorld<D>::extrapolate_boundary_pressure() {
 }
 
 namespace {
+// Σ W over one row of a square lattice of spacing s (a line in 2D, a plane in 3D) at distance
+// `normal` from the particle, out to `reach` spacings on either side: the flat-wall calibrations'
+// building block (lateral offsets on the first D − 1 axes, the normal on the last).
+template <int D, class Kernel>
+double lateral_sum(const Kernel& K, double s, int reach, double normal) {
+  double sum = 0;
+  for (int a = -reach; a <= reach; ++a)
+    for (int c = (D == 3 ? -reach : 0); c <= (D == 3 ? reach : 0); ++c) {
+      const double r2 = (double(a) * a + double(c) * c) * s * s + normal * normal;
+      sum += double(K.value(Real(r2)));
+    }
+  return sum;
+}
+
 // Akinci's volume V_b = 1/Σ_k W_bk over-counts a wall sampled at the fluid spacing: next to a
 // flat single-layer wall a fluid particle reaches 1.07 ρ0 in 2D at rest (and more in corners),
 // and Tait's γ = 7 turns that into a burst at t = 0. We keep Akinci's per-particle volume (so
@@ -334,19 +348,10 @@ namespace {
 template <int D, class Kernel>
 double flat_wall_calibration(const Kernel& K, double s, int layers, double support) {
   const int reach = int(std::ceil(support / s)) + 1;
-  // Lateral lattice offsets (1 axis in 2D, 2 in 3D), normal axis = last.
-  auto lateral_sum = [&](double normal) {
-    double sum = 0;
-    for (int a = -reach; a <= reach; ++a)
-      for (int c = (D == 3 ? -reach : 0); c <= (D == 3 ? reach : 0); ++c) {
-        const double r2 = (double(a) * a + double(c) * c) * s * s + normal * normal;
-        sum += double(K.value(Real(r2)));
-      }
-    return sum;
-  };
+  auto lateral = [&](double normal) { return lateral_sum<D>(K, s, reach, normal); };
   double full = 0, half = 0;  // fluid lattice sums: all rows, and rows on the fluid side
   for (int n = -reach; n <= reach; ++n) {
-    const double row = lateral_sum(n * s);
+    const double row = lateral(n * s);
     full += row;
     if (n >= 0) half += row;
   }
@@ -355,8 +360,8 @@ double flat_wall_calibration(const Kernel& K, double s, int layers, double suppo
   double boundary = 0;
   for (int l = 0; l < layers; ++l) {
     double akinci = 0;
-    for (int q = 0; q < layers; ++q) akinci += lateral_sum((q - l) * s);
-    boundary += lateral_sum((1 + l) * s) / akinci;  // ρ0 V_l Σ W, in units of ρ0
+    for (int q = 0; q < layers; ++q) akinci += lateral((q - l) * s);
+    boundary += lateral((1 + l) * s) / akinci;  // ρ0 V_l Σ W, in units of ρ0
   }
   return (1.0 - half / full) / boundary;
 }
@@ -367,18 +372,10 @@ double flat_wall_calibration(const Kernel& K, double s, int layers, double suppo
 template <int D, class Kernel>
 double lattice_wall_calibration(const Kernel& K, double s, int layers, double support) {
   const int reach = int(std::ceil(support / s)) + 1;
-  auto lateral_sum = [&](double normal) {
-    double sum = 0;
-    for (int a = -reach; a <= reach; ++a)
-      for (int c = (D == 3 ? -reach : 0); c <= (D == 3 ? reach : 0); ++c) {
-        const double r2 = (double(a) * a + double(c) * c) * s * s + normal * normal;
-        sum += double(K.value(Real(r2)));
-      }
-    return sum;
-  };
+  auto lateral = [&](double normal) { return lateral_sum<D>(K, s, reach, normal); };
   double missing = 0, boundary = 0;  // the fluid rows beyond the wall plane; the wall's layers
-  for (int n = 1; n <= reach; ++n) missing += lateral_sum(n * s);
-  for (int l = 0; l < layers; ++l) boundary += lateral_sum((1 + l) * s);
+  for (int n = 1; n <= reach; ++n) missing += lateral(n * s);
+  for (int l = 0; l < layers; ++l) boundary += lateral((1 + l) * s);
   return boundary > 0 ? missing / boundary : 1.0;
 }
 }  // namespace

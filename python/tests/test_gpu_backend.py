@@ -37,7 +37,7 @@ def _gpu(scene, **kw):
 # lattice's volume (session 44) the column collapses along another trajectory, one that amplifies
 # round-off faster from the 17th substep on: 1.2e-4 m on the AMD host at the 20th; the CPU alone,
 # with gravity nudged by 1e-7 of itself, moves by 1.2e-5 m at the 20th and 5.9e-4 m at the 40th
-# (2.3e-5 and 3.0e-5 with the old walls; at a 0.05 m spacing the old walls' run is the one that
+# (9.1e-6 and 3.0e-5 with the old walls; at a 0.05 m spacing the old walls' run is the one that
 # grows). So within 2e-4 m, 5e-3 of the 0.04 m spacing. Density follows: ρ
 # changes by about ρ0/spacing per metre, so PBF's densities agree to 5e-3 of ρ0 (measured 5.6e-4
 # AMD, 1.3e-3 Intel; 3.2e-3 AMD since session 44), WCSPH's and DFSPH's to 1e-4 (8.3e-6 and 1.3e-5,

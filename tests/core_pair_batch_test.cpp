@@ -3,6 +3,10 @@
 // them (grid_test_util.h).
 #include <gtest/gtest.h>
 
+#include <array>
+#include <bit>
+#include <vector>
+
 #include "grid_test_util.h"
 
 namespace rtsph::grid_test {
@@ -194,6 +198,74 @@ TYPED_TEST(GridTest, NeighbourListsArePackedAndMatchBruteForce) {
   p.insert(p.end(), q.begin(), q.end());
   check_list<D>(p, 0.05f, "cluster");
   check_list<D>(Points<D>{}, 0.05f, "empty");
+}
+
+// The packed list walk (positions read as records: 8-byte (x, y) in 2D, 16-byte (x, y, z, ·) in
+// 3D) hands fn the same lanes, offsets, r² and mask as the gathered walk, bit for bit: the
+// solvers switch between them (FluidWorld::pack_positions) and promise the same results.
+TYPED_TEST(GridTest, PackedListWalkMatchesTheGatheredWalk) {
+  constexpr int D = TypeParam::D;
+  using simd::f8;
+  using simd::i8;
+  const float cell = D == 2 ? 0.06f : 0.12f;  // about 30 neighbours each
+  const auto pts = uniform<D>(D == 2 ? 3000 : 4000, 0.0f, 1.0f, 34);
+  Built<D> b;
+  build<D>(b, pts, vec<D>(0.0f), vec<D>(1.0f), cell, 1);
+  const std::size_t n = pts.size();
+  NeighbourList<D> list;
+  list.build(b.grid, b.ptr, n, cell * cell, ThreadPool(1));
+  constexpr std::size_t stride = D == 3 ? 4 : 2;
+  AlignedArray<float> rec;
+  rec.resize(stride * n);
+  for (std::size_t i = 0; i < n; ++i)
+    for (int a = 0; a < D; ++a) rec[stride * i + a] = b.ptr[a][i];
+  std::size_t batches = 0, lanes = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    float xi[D];
+    for (int a = 0; a < D; ++a) xi[a] = b.ptr[a][i];
+    std::vector<std::array<f8, D + 1>> gathered;
+    std::vector<i8> gathered_j, gathered_m;
+    for_each_listed_batch<D>(list, i, b.ptr, xi, cell * cell, [&](i8 j, const f8* d, f8 r2, i8 m) {
+      std::array<f8, D + 1> v;
+      for (int a = 0; a < D; ++a) v[a] = d[a];
+      v[D] = r2;
+      gathered.push_back(v);
+      gathered_j.push_back(j);
+      gathered_m.push_back(m);
+    });
+    std::size_t k = 0;
+    for_each_listed_batch_packed<D>(list, i, rec.data(), xi, cell * cell, [&](i8 j, const f8* d, f8 r2, i8 m) {
+      ASSERT_LT(k, gathered.size()) << "particle " << i;
+      for (int l = 0; l < simd::kWidth; ++l) {
+        ASSERT_EQ(j[l], gathered_j[k][l]) << "particle " << i << " batch " << k << " lane " << l;
+        ASSERT_EQ(m[l], gathered_m[k][l]) << "particle " << i << " batch " << k << " lane " << l;
+        if (!m[l]) continue;
+        ++lanes;
+        for (int a = 0; a < D; ++a)
+          ASSERT_EQ(std::bit_cast<uint32_t>(d[a][l]), std::bit_cast<uint32_t>(gathered[k][a][l]))
+              << "particle " << i << " axis " << a;
+        ASSERT_EQ(std::bit_cast<uint32_t>(r2[l]), std::bit_cast<uint32_t>(gathered[k][D][l])) << "particle " << i;
+      }
+      ++k;
+    });
+    ASSERT_EQ(k, gathered.size()) << "particle " << i;
+    batches += k;
+  }
+  EXPECT_GT(batches, n);
+  EXPECT_GT(lanes, 10 * n);  // every particle has neighbours besides itself
+}
+
+// simd::at_packed2 reads field 0 and field 1 of the records at each lane's index, as gathers do.
+TEST(SimdPacked, AtPacked2ReadsBothFieldsOfEachLanesRecord) {
+  std::vector<float> rec(2 * 64);
+  for (std::size_t i = 0; i < rec.size(); ++i) rec[i] = 0.5f * float(i) - 7.0f;
+  const simd::i8 j = {63, 0, 17, 17, 5, 40, 2, 31};
+  simd::f8 a, b;
+  simd::at_packed2(rec.data(), j, a, b);
+  for (int l = 0; l < simd::kWidth; ++l) {
+    EXPECT_EQ(a[l], rec[2 * std::size_t(j[l])]) << "lane " << l;
+    EXPECT_EQ(b[l], rec[2 * std::size_t(j[l]) + 1]) << "lane " << l;
+  }
 }
 
 // Along a periodic axis a list holds the neighbours across the seam too: each particle's list is

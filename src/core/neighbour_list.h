@@ -92,15 +92,19 @@ template <int D, class Fn>
   }, fn);
 }
 
-/// for_each_listed_batch in 3D with the positions read from 16-byte (x, y, z, ·) records
-/// (simd::at_packed3) instead of three gathers.
-template <class Fn>
-[[gnu::always_inline]] inline void for_each_listed_batch_packed(const NeighbourList<3>& list,
+/// for_each_listed_batch with the positions read from records instead of one gather per axis:
+/// 16-byte (x, y, z, ·) records in 3D (simd::at_packed3), 8-byte (x, y) ones in 2D
+/// (simd::at_packed2).
+template <int D, class Fn>
+[[gnu::always_inline]] inline void for_each_listed_batch_packed(const NeighbourList<D>& list,
                                                                 std::size_t i, const Real* rec,
-                                                                const Real xi[3], Real support2,
+                                                                const Real xi[D], Real support2,
                                                                 Fn&& fn) {
-  detail::walk_listed<3>(list, i, xi, support2, [&](simd::i8 j, simd::f8* x) {
-    simd::at_packed3(rec, j, x[0], x[1], x[2]);
+  detail::walk_listed<D>(list, i, xi, support2, [&](simd::i8 j, simd::f8* x) {
+    if constexpr (D == 3)
+      simd::at_packed3(rec, j, x[0], x[1], x[2]);
+    else
+      simd::at_packed2(rec, j, x[0], x[1]);
   }, fn);
 }
 

@@ -60,6 +60,31 @@ inline void at_packed4(const float* rec, i8 j, f8& a, f8& b, f8& c, f8& w) {
   }
 #endif
 }
+/// The two fields of eight 8-byte records (2D: vx, vy) at the indices j: eight 8-byte loads
+/// and two shuffles instead of two gathers.
+inline void at_packed2(const float* rec, i8 j, f8& a, f8& b) {
+#if defined(__AVX__)
+  // Each record read as one 8-byte value through memcpy: a load through a double* would alias
+  // the floats it reads, and GCC then moved it before their stores (seen at -O3).
+  auto record = [&](int l) {
+    double r;
+    std::memcpy(&r, rec + 2 * j[l], sizeof r);
+    return r;
+  };
+  auto pair = [&](int l0, int l1) {  // records l0 and l1 as (a, b, a, b)
+    return _mm_castpd_ps(_mm_set_pd(record(l1), record(l0)));
+  };
+  const __m256 q0 = _mm256_insertf128_ps(_mm256_castps128_ps256(pair(0, 1)), pair(4, 5), 1);
+  const __m256 q1 = _mm256_insertf128_ps(_mm256_castps128_ps256(pair(2, 3)), pair(6, 7), 1);
+  a = _mm256_shuffle_ps(q0, q1, 0x88);  // (q0[0], q0[2], q1[0], q1[2]) per 128-bit half
+  b = _mm256_shuffle_ps(q0, q1, 0xDD);
+#else
+  for (int i = 0; i < kWidth; ++i) {
+    a[i] = rec[2 * j[i]];
+    b[i] = rec[2 * j[i] + 1];
+  }
+#endif
+}
 /// The first three fields (the fourth is left unread by the optimiser).
 inline void at_packed3(const float* rec, i8 j, f8& a, f8& b, f8& c) {
   f8 w;

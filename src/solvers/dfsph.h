@@ -81,7 +81,7 @@ class Dfsph final : public FluidWorld<D> {
   AlignedArray<Real> factor_;        // 1/(|Σm∇W + Σ_bΨ∇W|-weighted sums), m^(2d+2)/kg² (eq. 8)
   AlignedArray<Real> neighbours_;    // fluid + boundary neighbours, for the divergence clamp
   AlignedArray<Real> pressure_;      // Pᵢ = κᵢ/ρᵢ of the current sweep (m^(d+2)/(kg s²))
-  AlignedArray<Real> packed_v_;      // 3D: vᵢ as (x, y, z, 0) records, for the residual's loads
+  AlignedArray<Real> packed_v_;      // vᵢ as (x, y, z, 0) (3D) or (x, y) (2D) records, for the residual's loads
   AlignedArray<Real> last_step_;     // the previous sweep's change of Pᵢ (Chebyshev)
   AlignedArray<Real> warm_density_, warm_divergence_;  // Σκ/ρ of the last step, times Δt², Δt
   // The positions do not move between compute_factors() and the end of the next density solve

@@ -79,7 +79,7 @@ void Dfsph<D>::compute_factors(bool with_density) {
   wall_rate_.resize(n);
   Real* grad_out[D];  // hoisted: the loop's stores then cannot be taken to move the arrays
   for (int k = 0; k < D; ++k) grad_out[k] = pair_grad_.at(0, k);
-  const Real* const packed_x = this->pack_positions();  // 3D: records instead of gathers
+  const Real* const packed_x = this->pack_positions();  // records instead of gathers
   // Below this the particle has (almost) no neighbours: no pressure can act on it.
   const double tiny = 1e-6 * this->lattice_gradient_sum();
   Real* const rho = fluid_.rho.data();
@@ -105,8 +105,8 @@ void Dfsph<D>::compute_factors(bool with_density) {
           }
           slot += simd::kWidth;
         };
-        if (D == 3 && packed_x) {
-          if constexpr (D == 3) for_each_listed_batch_packed(list, i, packed_x, xi, support2, pair);
+        if (packed_x) {
+          for_each_listed_batch_packed<D>(list, i, packed_x, xi, support2, pair);
         } else {
           for_each_listed_batch<D>(list, i, fx, xi, support2, pair);
         }
@@ -183,8 +183,9 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
         });
       } else {
         for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
-          for (int k = 0; k < D; ++k)
-            rf += (vi[k] - simd::at(fv[k], j)) * simd::load(pair_grad_.at(slot, k));
+          f8 vj[2];
+          simd::at_packed2(packed_v, j, vj[0], vj[1]);
+          for (int k = 0; k < D; ++k) rf += (vi[k] - vj[k]) * simd::load(pair_grad_.at(slot, k));
         });
       }
       double wall = -double(wall_rate_[i]);
@@ -225,7 +226,7 @@ void Dfsph<D>::apply_pressure(const Real* P, double dt) {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), fdt = Real(dt);
   const NeighbourList<D>& list = ctx_.fluid_list;
-  if constexpr (D == 3) packed_v_.resize(4 * n);
+  packed_v_.resize((D == 3 ? 4 : 2) * n);
   Real* const packed_v = packed_v_.data();
   pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
     for (std::size_t i = b; i < e; ++i) {
@@ -239,7 +240,7 @@ void Dfsph<D>::apply_pressure(const Real* P, double dt) {
         const Real a = simd::hsum(acc[k]) - 2.0f * Pi * wall_grad_[k][i];
         fluid_.a[k][i] = a;
         fluid_.v[k][i] += a * fdt;
-        if constexpr (D == 3) packed_v[4 * i + k] = fluid_.v[k][i];
+        packed_v[(D == 3 ? 4 : 2) * i + k] = fluid_.v[k][i];
       }
     }
   }, ThreadPool::kPairs);

@@ -26,19 +26,16 @@ constexpr float kMinWallDistance = 0.25f;  // spacings
 
 template <int D>
 const Real* FluidWorld<D>::pack_positions() {
-  if constexpr (D != 3) {
-    return nullptr;
-  } else {
-    const std::size_t n = fluid_.size();
-    if (!lists_current() || n == 0) return nullptr;
-    ctx_.packed_x.resize(4 * n);
-    Real* out = ctx_.packed_x.data();
-    pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
-      for (std::size_t i = b; i < e; ++i)
-        for (int k = 0; k < D; ++k) out[4 * i + k] = fluid_.x[k][i];
-    });
-    return out;
-  }
+  const std::size_t n = fluid_.size();
+  if (!lists_current() || n == 0) return nullptr;
+  constexpr std::size_t kStride = D == 3 ? 4 : 2;  // at_packed3's 16-byte records, at_packed2's 8
+  ctx_.packed_x.resize(kStride * n);
+  Real* out = ctx_.packed_x.data();
+  pool_.parallel_for(n, [&](std::size_t b, std::size_t e) {
+    for (std::size_t i = b; i < e; ++i)
+      for (int k = 0; k < D; ++k) out[kStride * i + k] = fluid_.x[k][i];
+  });
+  return out;
 }
 
 // ρᵢ = Σⱼ m Wᵢⱼ + Σ_b Ψ_b W_ib. Without lists or periodic axes each fluid pair is visited once
@@ -440,7 +437,8 @@ void FluidWorld<D>::compute_boundary_psi() {
   template const Real* FluidWorld<D>::pack_positions();     \
   template void FluidWorld<D>::accelerations(const ForceTerms&); \
   template void FluidWorld<D>::extrapolate_boundary_pressure(); \
-  template void FluidWorld<D>::compute_boundary_psi();
+  template void FluidWorld<D>::compute_boundary_psi();     \
+  template void FluidWorld<D>::clear(Real* const*, std::size_t, int);
 RTSPH_INSTANTIATE(2)
 RTSPH_INSTANTIATE(3)
 #undef RTSPH_INSTANTIATE

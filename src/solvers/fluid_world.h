@@ -44,7 +44,7 @@ struct StepContext {
   AlignedArray<Real> wall_normal[D];
   AlignedArray<Real> wall_depth;
   AlignedArray<Real> surface_normal[D];  // Akinci 2013's nᵢ (or the shift δrᵢ), only when on
-  AlignedArray<Real> packed_x;     // 3D: positions as (x, y, z, ·) records for one pair sum
+  AlignedArray<Real> packed_x;     // positions as (x, y, z, ·) or (x, y) records for one pair sum
   AlignedArray<Real> tmp;          // permutation scratch (boundary and method fields)
   typename FluidParticles<D>::Spare spare;  // double buffers for the fluid reorder
   std::size_t bytes() const {
@@ -211,23 +211,21 @@ class FluidWorld : public Simulation {
   void keep_neighbour_lists() { keep_lists_ = true; build_neighbour_lists(); }
   /// The fluid pair walk every sum uses: particle i's list when one is current, else its
   /// grid cells. fn(j, d, r2, mask) reads neighbour fields with simd::at(array, j).
-  /// With packed from pack_positions() (3D, lists current), the list walk reads the positions
-  /// as records, eight loads per batch instead of three gathers.
+  /// With packed from pack_positions() (lists current), the list walk reads the positions as
+  /// records, eight loads per batch instead of one gather per axis.
   template <bool kPeriodic, class Fn>
   [[gnu::always_inline]] void for_each_fluid_batch(std::size_t i, const Real* const xs[D],
                                                    const Real xi[D], Real support2, Fn&& fn,
                                                    const Real* packed = nullptr) const {
-    if constexpr (D == 3) {
-      if (packed) return for_each_listed_batch_packed(ctx_.fluid_list, i, packed, xi, support2, fn);
-    }
+    if (packed) return for_each_listed_batch_packed<D>(ctx_.fluid_list, i, packed, xi, support2, fn);
     if (lists_current())
       for_each_listed_batch<D>(ctx_.fluid_list, i, xs, xi, support2, fn);
     else
       for_each_candidate_batch<D, kPeriodic>(ctx_.fluid_grid, ctx_.fluid_grid.sorted_cells()[i], xs, xi,
                                              support2, fn);
   }
-  /// In 3D with current lists, copies the positions into ctx_.packed_x as 16-byte records for
-  /// the pair sum about to run (for_each_fluid_batch's packed argument); else nullptr.
+  /// With current lists, copies the positions into ctx_.packed_x as records (16 bytes in 3D, 8 in
+  /// 2D) for the pair sum about to run (for_each_fluid_batch's packed argument); else nullptr.
   const Real* pack_positions();
   void compute_density();                // ρᵢ = Σⱼ mⱼ Wᵢⱼ + Σ_b Ψ_b W_ib (Akinci 2012, eq. 6)
   void measure_density_error();          // max and mean compression (ρ-ρ0)/ρ0 ≥ 0

@@ -273,7 +273,7 @@ double Pbf<D>::compute_lambda() {
   const int n_corr = spec_.pbf_scorr_n;
   const double dq = spec_.pbf_scorr_dq * prm_.support;
   [[maybe_unused]] const double k_corr = spec_.pbf_scorr_k / std::max(lattice_gradient_norm_, 1e-30);
-  // 3D: records instead of gathers; the positions move every iteration, so copied here.
+  // Records instead of gathers; the positions move every iteration, so copied here.
   const Real* const packed_x = this->pack_positions();
   Real* rho = fluid_.rho.data();
   Real* lambda = lambda_.data();
@@ -318,8 +318,8 @@ double Pbf<D>::compute_lambda() {
           }
           slot += simd::kWidth;
         };
-        if (D == 3 && packed_x) {
-          if constexpr (D == 3) for_each_listed_batch_packed(list, i, packed_x, xi, support2, pair);
+        if (packed_x) {
+          for_each_listed_batch_packed<D>(list, i, packed_x, xi, support2, pair);
         } else {
           for_each_listed_batch<D>(list, i, fx, xi, support2, pair);
         }

@@ -64,7 +64,7 @@ def _always_fails(method, level, threads):
 
 def test_a_failing_case_exits_1(tmp_path, monkeypatch):
     monkeypatch.setitem(validate.CASES, "always_fails", _always_fails)
-    assert vmain.main(["always_fails", "--method", "wcsph", "--out", str(tmp_path)]) == 1
+    assert vmain.main(["always_fails", "--method", "wcsph", "--jobs", "1", "--out", str(tmp_path)]) == 1
     assert json.loads((tmp_path / "summary.json").read_text())["passed"] is False
 
 
@@ -96,7 +96,7 @@ def test_known_failures_hold_the_failing_cases_where_they_are(tmp_path, monkeypa
     monkeypatch.setitem(validate.CASES, "always_fails", _always_fails)
     from rtsph.validate import known as known_mod
     monkeypatch.setitem(known_mod.KNOWN_FAILURES, ("always_fails", "wcsph"), Known(1.0, "a test's failure"))
-    args = ["always_fails", "--method", "wcsph", "--out", str(tmp_path)]
+    args = ["always_fails", "--method", "wcsph", "--jobs", "1", "--out", str(tmp_path)]
     assert vmain.main(args) == 1
     assert vmain.main(args + ["--known-failures"]) == 0
     row = json.loads((tmp_path / "summary.json").read_text())["cases"][0]
@@ -108,7 +108,7 @@ def test_known_failures_hold_the_failing_cases_where_they_are(tmp_path, monkeypa
 
 
 @pytest.mark.parametrize("args", [["no_such_case"], ["--method", "sph2014"], ["--backend", "cuda"], ["--threads", "-1"],
-                                  ["--jobs", "0"], ["--no-such-flag"], ["--set", "solver.smoothing_ratio"],
+                                  ["--jobs", "-1"], ["--no-such-flag"], ["--set", "solver.smoothing_ratio"],
                                   ["--set", "fluid.spacing=0.01"], ["--set", "solver.method=pbf"],
                                   ["--set", "gravity=0,0"], ["--set", "solver.smoothing_ratio=9"],
                                   ["--set", "solver.smoothing_rati=1.3"],
@@ -130,7 +130,7 @@ def test_set_reaches_every_scene_in_every_worker(tmp_path, monkeypatch):
         return _common._finish(Result(case="h_over_s", method=method, metric="h/s", error=sim.stats["h"] / 0.1,
                                       tolerance=10.0))
     monkeypatch.setitem(validate.CASES, "h_over_s", h_over_s)
-    args = ["h_over_s", "--method", "wcsph", "--threads", "1"]
+    args = ["h_over_s", "--method", "wcsph", "--threads", "1", "--jobs", "1"]
     assert vmain.main(args + ["--out", str(tmp_path / "a"), "--set", "solver.smoothing_ratio=1.3"]) == 0
     summary = json.loads((tmp_path / "a" / "summary.json").read_text())
     assert summary["cases"][0]["error"] == pytest.approx(1.3)
@@ -158,7 +158,7 @@ def test_an_out_it_cannot_write_exits_2_before_any_case_runs(tmp_path, monkeypat
     blocker = tmp_path / "a_file"
     blocker.write_text("")
     for out in (blocker, blocker / "below"):  # a file where the directory should be, and below one
-        assert vmain.main(["always_fails", "--method", "wcsph", "--out", str(out)]) == 2
+        assert vmain.main(["always_fails", "--method", "wcsph", "--jobs", "1", "--out", str(out)]) == 2
         err = capsys.readouterr().err
         assert err.count("\n") == 1 and "--out" in err and str(out) in err
     assert ran == []
@@ -169,7 +169,7 @@ def test_an_out_it_cannot_write_exits_2_before_any_case_runs(tmp_path, monkeypat
     def full_disk(*a, **k):
         raise OSError(28, "No space left on device")
     monkeypatch.setattr(vmain, "write_report", full_disk)
-    assert vmain.main(["always_fails", "--method", "wcsph", "--out", str(tmp_path / "r")]) == 2
+    assert vmain.main(["always_fails", "--method", "wcsph", "--jobs", "1", "--out", str(tmp_path / "r")]) == 2
     err = capsys.readouterr().err
     assert "No space left on device" in err and "always_fails (wcsph, quick) ... FAIL 1" in err
     assert "Traceback" not in err

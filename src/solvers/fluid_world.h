@@ -373,6 +373,33 @@ class FluidWorld : public Simulation {
       for (std::size_t i = b; i < e; ++i) particle(i, std::false_type{});
     }, ThreadPool::kPairs);
   }
+  /// One particle's sum of an antisymmetric pair term (Newton's third law: j feels −c when i
+  /// feels c). pair(j, d, r2, mask, c) writes i's term c for a batch. The forward walk (tag
+  /// std::true_type, from for_each_pair_sum_particle) visits each pair once and adds −c to j in
+  /// out; the full walk visits every neighbour, each particle summing its own. Adds Σc to acc.
+  template <bool kPeriodic, class Tag, class Pair>
+  [[gnu::always_inline]] void sum_antisymmetric_pairs(std::size_t i, Tag, const Real* const xs[D],
+                                                      const Real xi[D], Real support2,
+                                                      const Real* packed, Real* const out[D],
+                                                      simd::f8* acc, Pair&& pair) const {
+    if constexpr (Tag::value) {
+      for_each_forward_batch<D>(ctx_.fluid_grid, ctx_.fluid_grid.sorted_cells()[i], uint32_t(i), xs, xi,
+                                support2, [&](uint32_t j, const simd::f8* d, simd::f8 r2, simd::i8 m, int valid) {
+                                  simd::f8 c[D];
+                                  pair(j, d, r2, m, c);
+                                  for (int k = 0; k < D; ++k) {
+                                    acc[k] += c[k];
+                                    add_forward(out[k], j, -c[k], valid);
+                                  }
+                                });
+    } else {
+      for_each_fluid_batch<kPeriodic>(i, xs, xi, support2, [&](auto j, const simd::f8* d, simd::f8 r2, simd::i8 m) {
+        simd::f8 c[D];
+        pair(j, d, r2, m, c);
+        for (int k = 0; k < D; ++k) acc[k] += c[k];
+      }, packed);
+    }
+  }
   bool lists_current() const {
     return ctx_.fluid_list.valid() && ctx_.fluid_list.size() == fluid_.size();
   }

@@ -44,8 +44,8 @@ void Pbf<D>::xsph_and_vorticity(double dt) {
   const Real* rho = fluid_.rho.data();
   // 3D with current lists: the neighbours' positions and (v, ρ) as 16-byte records, read by
   // eight loads per batch instead of seven gathers (as the λ pass).
-  const Real* const px = this->pack_positions();
-  const bool packed = D == 3 && px != nullptr;  // 2D: positions and fields gathered
+  const Real* const px = D == 3 ? this->pack_positions() : nullptr;
+  const bool packed = px != nullptr;  // 2D: positions and fields gathered
   if (packed) {
     packed_v_.resize(4 * n);
     Real* pv = packed_v_.data();

@@ -112,24 +112,7 @@ void FluidWorld<D>::add_surface_forces() {
         for (int k = 0; k < D; ++k) c[k] = coh * d[k] + curv * (ni[k] - simd::at(cn[k], j));
       };
       if (gamma > 0) {
-        if constexpr (decltype(forward)::value) {
-          for_each_forward_batch<D>(ctx_.fluid_grid, cells[i], uint32_t(i), fx, xi, support2,
-                                    [&](uint32_t j, const f8* d, f8 r2, i8 m, int valid) {
-                                      f8 c[D];
-                                      pair(j, d, r2, m, c);
-                                      for (int k = 0; k < D; ++k) {
-                                        acc[k] += c[k];
-                                        add_forward(a_out[k], j, -c[k], valid);
-                                      }
-                                    });
-        } else {
-          this->template for_each_fluid_batch<periodic_v<decltype(K)>>(
-              i, fx, xi, support2, [&](auto j, const f8* d, f8 r2, i8 m) {
-                f8 c[D];
-                pair(j, d, r2, m, c);
-                for (int k = 0; k < D; ++k) acc[k] += c[k];
-              }, packed);
-        }
+        this->template sum_antisymmetric_pairs<periodic_v<decltype(K)>>(i, forward, fx, xi, support2, packed, a_out, acc, pair);
       }
       if (beta > 0) {
         Vec<D> pos;

@@ -78,17 +78,30 @@ std::string halve_time_step(SimSpec& s) {
 /// --set on a resumed run may change the live parameters except gravity (c0 was derived from it
 /// when the run started, and a checkpoint does not store derived parameters), and end_time, which
 /// only sets the default --until. The stored scene fixes the rest.
-void check_resume_overrides(const SimSpec& stored, const SimSpec& wanted) {
+bool resume_allows(const SimSpec& stored, const SimSpec& wanted) {
   SimSpec allowed = stored;
   copy_live_parameters(wanted, allowed);
   allowed.gravity = stored.gravity;
   allowed.end_time = wanted.end_time;
-  if (scene_to_json(allowed) == scene_to_json(wanted)) return;
+  return scene_to_json(allowed) == scene_to_json(wanted);
+}
+
+/// Refuses, naming the first --set that changes what the checkpoint fixes.
+void check_resume_overrides(const SimSpec& stored, const SimSpec& wanted, const std::vector<std::string>& sets) {
+  if (resume_allows(stored, wanted)) return;
+  std::string bad;
+  for (const auto& set : sets) {
+    SimSpec one = stored;
+    apply_override(one, set);
+    if (!resume_allows(stored, one)) {
+      bad = fmt::format("--set {}: {} is fixed by the checkpoint's scene; ", set, set.substr(0, set.find('=')));
+      break;
+    }
+  }
   std::vector<std::string> keys;
   for (const auto& p : parameter_table())
     if (p.live && p.key != "gravity") keys.push_back(p.key);
-  throw std::invalid_argument(fmt::format("--set with --resume can only change {} and end_time; other "
-                                          "parameters are fixed by the checkpoint's scene",
+  throw std::invalid_argument(fmt::format("{}--set with --resume can only change {} and end_time", bad,
                                           fmt::join(keys, ", ")));
 }
 
@@ -117,7 +130,7 @@ int run(const RunOptions& o) {
       const SimSpec stored = load_checkpoint_scene(resumed_from);
       spec = stored;
       for (const auto& s : o.sets) apply_override(spec, s);
-      check_resume_overrides(stored, spec);
+      check_resume_overrides(stored, spec, o.sets);
       sim = BackendSimulation::make(stored, o.threads, choose_backend(o.backend, spec, "cpu"));
       io::read_checkpoint(resumed_from, *sim, scene_hash(stored));
       if (scene_to_json(spec) != scene_to_json(stored)) sim->set_live_parameters(spec);
@@ -128,6 +141,9 @@ int run(const RunOptions& o) {
     sim = BackendSimulation::make(spec, o.threads, choose_backend(o.backend, spec, "cpu"));
   }
   const bool resumed = !resumed_from.empty();
+  if (resumed && o.until >= 0 && o.until < sim->time())
+    throw std::invalid_argument(fmt::format("--until {} s is before the checkpoint's time, {:.6g} s: nothing to run",
+                                            o.until, sim->time()));
   const double until = o.until >= 0 ? o.until : (o.steps >= 0 ? std::numeric_limits<double>::infinity() : spec.end_time);
   const std::uint64_t max_steps = o.steps >= 0 ? std::uint64_t(o.steps) : std::numeric_limits<std::uint64_t>::max();
   const std::string stem = safe_file_stem(spec.name);
@@ -355,17 +371,22 @@ void add_run_command(CLI::App& app, int& exit_code) {
                                            "or auto (= cpu for run); default: the scene's solver.backend")
       ->check(CLI::IsMember({"cpu", "gpu", "auto"}));
   cmd->add_option("--set", o->sets, "Override a scene parameter, e.g. --set fluid.spacing=0.01");
-  cmd->add_option("--export", o->export_dir, "Write frames into this directory");
-  cmd->add_option("--every", o->every, "Simulated seconds between exported frames")->check(positive_number());
+  CLI::Option* exp = cmd->add_option("--export", o->export_dir, "Write frames into this directory");
+  // The options below shape the frames --export writes; without it they would do nothing, so
+  // they are refused rather than silently ignored.
+  cmd->add_option("--every", o->every, "Simulated seconds between exported frames")
+      ->check(positive_number())->capture_default_str()->needs(exp);
   cmd->add_option("--format", o->format,
                   "Export format: particles (csv, vtk, ply) or the fluid surface (vdb: level set; obj, "
-                  "ply-mesh: triangle mesh; 3D scenes only)");
-  cmd->add_option("--voxel-size", o->voxel_size, "Surface formats: level-set voxel edge in m (default: 0.4 x spacing)");
+                  "ply-mesh: triangle mesh; 3D scenes only)")->capture_default_str()->needs(exp);
+  cmd->add_option("--voxel-size", o->voxel_size, "Surface formats: level-set voxel edge in m (default: 0.4 x spacing)")
+      ->needs(exp);
   cmd->add_option("--surface-radius", o->surface_radius,
-                  "Surface formats: particle sphere radius as a multiple of the spacing (default 1)");
+                  "Surface formats: particle sphere radius as a multiple of the spacing (default 1)")->needs(exp);
   cmd->add_option("--adaptivity", o->adaptivity,
-                  "obj, ply-mesh: mesh adaptivity from 0 (uniform, default) to 1 (fewest triangles)");
-  cmd->add_option("--attributes", o->attributes, "Exported arrays: all or a list of position,velocity,density,pressure,id");
+                  "obj, ply-mesh: mesh adaptivity from 0 (uniform, default) to 1 (fewest triangles)")->needs(exp);
+  cmd->add_option("--attributes", o->attributes, "Exported arrays: all or a list of position,velocity,density,pressure,id")
+      ->capture_default_str()->needs(exp);
   cmd->add_option("--stats-json", o->stats_json, "Write the summary as JSON to this file");
   cmd->add_flag("--quiet", o->quiet, "No progress output; with --stats-json the summary goes only to that file");
   cmd->add_option("--checkpoint-every", o->checkpoint_every,

@@ -42,12 +42,12 @@ void print_summary(const RunSummary& s, std::FILE* out) {
              "steps                  {}\n"
              "wall time              {:.2f} s\n"
              "simulated time         {:.4f} s\n"
-             "throughput             {:.3g} fluid particle-steps/s ({} threads)\n"
+             "throughput             {:.3g} fluid particle-steps/s ({} thread{})\n"
              "max density error      {:.2f} %\n"
              "mean density error     {:.3f} % (last step)\n"
              "put back into domain   {}\n",
              s.scene, s.dimension, s.method, s.fluid_particles, s.boundary_particles, s.steps, s.wall_s,
-             s.sim_time_s, s.fluid_particle_steps_per_s, s.threads, 100 * s.max_density_error,
+             s.sim_time_s, s.fluid_particle_steps_per_s, s.threads, s.threads == 1 ? "" : "s", 100 * s.max_density_error,
              100 * s.mean_density_error, s.particles_put_back);
   if (s.mean_pressure_iterations > 0 || s.mean_divergence_iterations > 0)
     fmt::print(out, "solver iterations      {:.2f} pressure, {:.2f} divergence (mean per step)\n",

@@ -176,6 +176,10 @@ TEST(SceneErrors, MalformedJsonGivesLineAndColumn) {
   expect_parts(parse_error("{\n  \"fluid\": {\"spacing\": 0.02,}\n}"), {"tank.json", "line 2, column", "malformed JSON"});
   expect_parts(parse_error(""), {"tank.json", "line 1", "end of input"});
   expect_parts(parse_error("{\"a\": tru}"), {"tank.json", "line 1"});
+  // A number past a double's range has no parse position from the library: found in the text.
+  const std::string overflow = parse_error("{\n  \"fluid\": {\"spacing\": 1e999}\n}");
+  expect_parts(overflow, {"tank.json", "line 2, column 24", "1e999", "number overflow"});
+  EXPECT_EQ(overflow.find("json.exception"), std::string::npos) << overflow;
 }
 
 TEST(SceneErrors, NonUtf8Input) {

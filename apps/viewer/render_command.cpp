@@ -1,6 +1,7 @@
 // `rtsph render SCENE --out PATH`: steps the simulation and renders frames headless through
 // EGL (no display needed). PATH.png: the last frame; PATH.mp4: a video through ffmpeg;
 // anything else: a directory of frame_000000.png, ….
+#include <cctype>
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -105,6 +106,16 @@ int render_scene(const RenderJob& job) {
     settings.range_max = float(job.range_max);
   }
   if (!(job.fps > 0)) throw std::invalid_argument("--fps must be positive");
+  // A name with another picture or video extension would become a directory of PNGs: refused.
+  {
+    std::string ext = std::filesystem::path(job.out).extension().string();
+    for (char& c : ext) c = char(std::tolower(static_cast<unsigned char>(c)));
+    for (const char* other : {".jpg", ".jpeg", ".gif", ".bmp", ".tif", ".tiff", ".webp", ".webm", ".mkv",
+                              ".mov", ".avi", ".m4v"})
+      if (ext == other)
+        throw std::invalid_argument(fmt::format("--out {}: {} is not written; use FILE.png, FILE.mp4 or a directory",
+                                                job.out, ext));
+  }
   const int frames = job.frames > 0 ? job.frames : std::max(1, int(std::lround(spec.end_time * job.fps)));
 
   std::string err;

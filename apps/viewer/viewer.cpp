@@ -433,7 +433,9 @@ int Viewer::run() {
                   "sim %.1f ms/frame, %.2f ms/step, sim time %.3f s, real-time factor %.4f; "
                   "fell behind real time %d times (%.3f s skipped)\n",
                   spec_.name.c_str(), spec_.method.c_str(), f.stats.fluid_particles, frames_total_, wall, frames_total_ / wall,
-                  100 * scale_, 1000 * f.busy_s / std::max<long>(frames_total_, 1), f.step_ms,
+                  100 * scale_, 1000 * f.busy_s / std::max<long>(frames_total_, 1),
+                  // The run's mean (the panel's figure is a one-second window: 0 in a shorter run).
+                  f.stats.steps ? 1000 * f.busy_s / double(f.stats.steps) : f.step_ms,
                   f.stats.time_s, f.stats.time_s / wall, f.behind_count, f.behind_s);
       if (timer_.on()) timer_.print(renderer_->surface_times(), renderer_->splat_count());
     }

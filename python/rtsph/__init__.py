@@ -287,5 +287,7 @@ def render(sim: Simulation, path: Optional[PathLike] = None, size: Tuple[int, in
     (H, W, 4) uint8 array; with ``path``, also writes it as PNG. ``style``: "surface" (the water
     surface, as the CLI's default) or "particles" (which ``color`` applies to)."""
     width, height = size
+    if path is not None and not os.fspath(path).lower().endswith(".png"):
+        raise ValueError(f"render: path {os.fspath(path)!r}: the picture is written as PNG; name it FILE.png")
     return _rtsph._render(sim, int(width), int(height), color, display, colormap, style,
                           "" if path is None else os.fspath(path))

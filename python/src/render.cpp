@@ -4,6 +4,8 @@
 #include <nanobind/ndarray.h>
 #include <nanobind/stl/string.h>
 
+#include <cerrno>
+#include <cstring>
 #include <mutex>
 #include <vector>
 
@@ -31,7 +33,7 @@ Image render_frame(PySimulation& self, int width, int height, const std::string&
     throw std::invalid_argument(fmt::format("render: size {}x{} is outside 16..8192", width, height));
   render::RenderSettings settings;
   if (!render::parse_color_mode(color, &settings.color))
-    throw std::invalid_argument(fmt::format("render: color '{}': expected solid, speed, velocity, pressure or density", color));
+    throw std::invalid_argument(fmt::format("render: color '{}': expected solid, speed, velocity, pressure, density or log_density", color));
   if (!render::parse_display_mode(display, &settings.display))
     throw std::invalid_argument(fmt::format("render: display '{}': expected fluid, obstacles or all", display));
   if (!render::parse_colormap(colormap, &settings.map))
@@ -67,8 +69,12 @@ Image render_frame(PySimulation& self, int width, int height, const std::string&
     target.bind();
     renderer.draw(cam, width, height, settings);
     *pixels = target.read_rgba();
-    if (!path.empty() && !render::write_png(path, width, height, pixels->data()))
-      throw std::runtime_error(fmt::format("render: cannot write {}", path));
+    errno = 0;  // stb_image_write reports through fopen's errno
+    if (!path.empty() && !render::write_png(path, width, height, pixels->data())) {
+      const int err = errno;
+      throw io::IoError(err ? fmt::format("render: cannot write {}: {}", path, std::strerror(err))
+                            : fmt::format("render: cannot write {}", path));
+    }
   }
   const std::size_t shape[3] = {std::size_t(height), std::size_t(width), 4};
   return Image(pixels->data(), 3, shape, owner);

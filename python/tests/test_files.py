@@ -75,6 +75,13 @@ def test_render_returns_a_picture_of_the_water(tank, tmp_path):
     again = rtsph.render(sim, tmp_path / "f.png", size=(160, 120), color="solid", style="particles")
     assert np.array_equal(img, again)
     assert (tmp_path / "f.png").read_bytes()[:8] == b"\x89PNG\r\n\x1a\n"
+    # A file it cannot write is an I/O error with the system's reason, as export's is.
+    with pytest.raises(rtsph.IoError, match="No such file or directory"):
+        rtsph.render(sim, tmp_path / "no" / "f.png", size=(32, 32))
+    assert rtsph.render(sim, size=(32, 32), color="log_density").shape == (32, 32, 4)
+    with pytest.raises(ValueError, match="PNG"):  # not PNG bytes under another name
+        rtsph.render(sim, tmp_path / "f.jpg", size=(32, 32))
+    assert not (tmp_path / "f.jpg").exists()
     with pytest.raises(ValueError, match="color"):
         rtsph.render(sim, color="plaid")
     with pytest.raises(ValueError, match="style"):

@@ -80,7 +80,22 @@ Json parse_json_text(const std::string& text, const std::string& source) {
   } catch (const std::length_error&) {
     throw SceneError(source, fmt::format("nested deeper than {} levels", kMaxDepth));
   } catch (const nlohmann::json::exception& e) {
-    throw SceneError(source, fmt::format("malformed JSON: {}", explanation(e.what())));
+    // Not a parse error (no byte offset): a number too large for a double, "number overflow
+    // parsing '1e999'". Drop the library's error id and find the literal in the text.
+    std::string what = e.what();
+    if (const auto close = what.find("] "); what.rfind("[json.exception.", 0) == 0 && close != std::string::npos)
+      what = what.substr(close + 2);
+    const auto q = what.find("parsing '");
+    const auto q_end = q == std::string::npos ? q : what.find('\'', q + 9);
+    if (q_end != std::string::npos) {
+      const std::string literal = what.substr(q + 9, q_end - q - 9);
+      if (const auto at = text.find(literal); !literal.empty() && at != std::string::npos) {
+        const Position p = position_of(text, at);
+        throw SceneError(source, fmt::format("line {}, column {}", p.line, p.column), literal,
+                         "malformed JSON: " + what.substr(0, q == 0 ? 0 : q - 1));
+      }
+    }
+    throw SceneError(source, fmt::format("malformed JSON: {}", what));
   }
 }
 

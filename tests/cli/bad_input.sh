@@ -47,6 +47,7 @@ check block_outside "$(write outside.json "{$base, \"fluid_blocks\": [{\"min\": 
 check emitter_outside "$(write emitter.json "{$base, \"emitters\": [{\"position\": [0.5,5,0.5]}]}")" "emitters[0].position" "[0.5, 5, 0.5]"
 check obstacle_outside "$(write obstacle.json "{$base, \"obstacles\": [{\"center\": [-1,0.5,0.5]}]}")" "obstacles[0].center" "[-1, 0.5, 0.5]"
 check fixed_dt "$(write dt.json "{$base, $block, \"solver\": {\"time_step\": {\"mode\": \"fixed\", \"dt\": 0}}}")" "solver.time_step.dt" ": 0:"
+check overflow "$(write overflow.json "{\n  $base,\n  \"fluid\": {\"spacing\": 1e999}\n}")" "line 3, column 24" "1e999" "number overflow"
 check memory "$(write memory.json "{$base, \"fluid\": {\"spacing\": 1e-5}}")" "fluid.spacing" "1e-05" "bytes"
 
 # A bad --set on a good scene is the same kind of error.
@@ -78,7 +79,11 @@ one_line() {
     failures=$((failures + 1))
   fi
 }
-one_line negative_until 2 "--until: '-1' must be zero or more" run dam_break_2d --until -1
+one_line negative_until 2 "--until: '-1' must be zero or more (rtsph run --help lists its options)" run dam_break_2d --until -1
+one_line unknown_command 2 "unknown command 'foo'; expected one of run, bench" foo
+# Options that shape --export's frames are refused without it (they did nothing, silently).
+one_line format_without_export 2 "--format requires --export" run dam_break_3d --until 0 --format vdb
+one_line every_without_export 2 "--every requires --export" run dam_break_2d --until 0 --every 0.1
 one_line negative_steps 2 "--steps: '-5' must be zero or more" run dam_break_2d --steps -5
 one_line zero_every 2 "--every: '0' must be above zero" run dam_break_2d --steps 1 --every 0 --export frames
 one_line word_every 2 "--every: 'abc' is not a number" run dam_break_2d --steps 1 --every abc --export frames
@@ -89,6 +94,8 @@ one_line stats_json_dir 1 "no directory" run dam_break_2d --until 0.005 --quiet 
 # The viewer names a bad option before it looks for a display (it said "no display" first).
 if "$rtsph" view --help >/dev/null 2>&1; then  # a build with the viewer
   DISPLAY= WAYLAND_DISPLAY= one_line view_size 2 "--size 0x0: expected WxH" view dam_break_2d --size 0x0
+  # A picture or video name it does not write would have become a directory of PNGs.
+  one_line render_jpg 2 "--out $work/x.jpg: .jpg is not written" render dam_break_2d --out "$work/x.jpg"
 fi
 
 if [ $failures -ne 0 ]; then

@@ -74,9 +74,10 @@ expect_refused "scene hash mismatch" hydrostatic_2d --resume "$good"
 expect_refused "scene hash mismatch" dam_break_2d --set fluid.spacing=0.03 --resume "$good"
 expect_refused "dimension mismatch" dam_break_3d --resume "$good"
 expect_refused "cannot open" --resume bad/missing.ckpt
-expect_refused "can only change fluid.viscosity, .*solver.time_step.dt, .* and end_time" --resume "$good" --set fluid.spacing=0.01
-expect_refused "can only change" --resume "$good" --set gravity=0,-5  # c0 was derived from it
+expect_refused "set fluid.spacing=0.01: fluid.spacing is fixed by the checkpoint.s scene; .*can only change fluid.viscosity, .*solver.time_step.dt, .* and end_time" --resume "$good" --set fluid.viscosity=0.001 --set fluid.spacing=0.01
+expect_refused "set gravity=0,-5: gravity is fixed" --resume "$good" --set gravity=0,-5  # c0 was derived from it
 expect_refused "no ckpt_" --resume bad
+expect_refused "until 0.001 s is before the checkpoint.s time" --resume "$good" --until 0.001
 # Live parameters (and end_time) may change on resume.
 run --resume "$good" --set fluid.viscosity=2e-6 --set solver.time_step.mode=fixed --set solver.time_step.dt=2e-4 \
   --set end_time=5 --steps 3

@@ -197,6 +197,7 @@ int run(const RunOptions& o) {
   SimSpec live = sim->spec();
   int retries = 0;
   std::string status = "completed", last_checkpoint;
+  double unstable_at = -1;  // the time the run failed at, when it did
   std::uint64_t last_checkpoint_step = std::numeric_limits<std::uint64_t>::max();
   int rc = 0;
 
@@ -266,6 +267,7 @@ int run(const RunOptions& o) {
         continue;
       }
       if (o.recover) std::fprintf(stderr, "rtsph: giving up after %d retries (--max-retries)\n", retries);
+      unstable_at = sim->time();
       good.restore(*sim);
       status = "unstable";
       rc = 3;
@@ -340,6 +342,7 @@ int run(const RunOptions& o) {
   const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   RunSummary summary = make_summary(*sim, steps, wall, o.threads);
   summary.status = status;
+  summary.unstable_at_s = unstable_at;
   summary.retries = retries;
   summary.checkpoint = last_checkpoint;
   if (!o.quiet || o.stats_json.empty()) print_summary(summary, stdout);

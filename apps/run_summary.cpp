@@ -55,7 +55,11 @@ void print_summary(const RunSummary& s, std::FILE* out) {
   if (s.capped_steps > 0)
     fmt::print(out, "solves at their cap    {} of {} steps (the density or divergence error stayed above "
                "its tolerance; solver.dfsph.max_iterations)\n", s.capped_steps, s.steps);
-  if (s.status != "completed") fmt::print(out, "status                 {}\n", s.status);
+  if (s.status == "unstable" && s.unstable_at_s >= 0)
+    fmt::print(out, "status                 unstable at t = {:.6g} s (the time and errors above are the last good "
+               "state's, the one saved)\n", s.unstable_at_s);
+  else if (s.status != "completed")
+    fmt::print(out, "status                 {}\n", s.status);
   if (s.retries > 0) fmt::print(out, "retries (dt halved)    {}\n", s.retries);
   if (!s.checkpoint.empty()) fmt::print(out, "checkpoint             {}\n", s.checkpoint);
   std::fflush(out);
@@ -81,6 +85,7 @@ std::string summary_json(const RunSummary& s) {
   j["threads"] = s.threads;
   j["bytes"] = s.bytes;
   j["status"] = s.status;
+  if (s.unstable_at_s >= 0) j["unstable_at_s"] = s.unstable_at_s;
   j["retries"] = s.retries;
   if (!s.checkpoint.empty()) j["checkpoint"] = s.checkpoint;
   return j.dump(2);

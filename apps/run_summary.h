@@ -25,6 +25,7 @@ struct RunSummary {
   // `run` only: how the run ended ("completed", "interrupted", "unstable", "io-error"), the
   // retries --recover made, and the last checkpoint written (empty: none).
   std::string status = "completed";
+  double unstable_at_s = -1;  // "unstable": the time it failed at (the summary is of the saved last good state)
   int retries = 0;
   std::string checkpoint;
 };

@@ -13,6 +13,11 @@ for want in "unstable at t = " ", step " "at particle " "dt = 0.003 s" "above th
   grep -q -- "$want" err.txt || fail "diagnostic lacks '$want': $(cat err.txt)"
 done
 grep -q "^status  *unstable" out.txt || fail "summary lacks the status: $(cat out.txt)"
+# The summary describes the saved state, and says so with the time the run failed at (the
+# diagnostic's): its zero time and errors read as a contradiction before.
+t_fail=$(sed -n 's/.*unstable at t = \([^ ]*\) s, step.*/\1/p' err.txt)
+grep -q "^status  *unstable at t = $t_fail s (the time and errors above are the last good state's" out.txt \
+  || fail "summary does not give the failure's time $t_fail: $(cat out.txt)"
 [ -f rtsph_unstable_dam_break_2d.ckpt ] || fail "last good state not saved: $(cat err.txt)"
 "$rtsph" run --resume rtsph_unstable_dam_break_2d.ckpt --steps 0 --threads 1 --quiet >/dev/null || fail "saved state does not load"
 echo "unstable: exit 3: $(head -1 err.txt)"

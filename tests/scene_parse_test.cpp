@@ -33,10 +33,18 @@ std::string parse_error(const std::string& text) {
   return error_of([&] { parse_scene(text, "tank.json"); });
 }
 
-// A valid 3D scene that the error cases below break one key at a time.
+// A valid 3D scene that the error cases below break one key at a time. `extra` may give one of
+// its own top-level keys (dimension, domain, fluid_blocks) instead: a file gives each key once.
 std::string tank(const std::string& extra = "", const std::string& block = R"([0,0,0], "max": [0.5,0.5,1])") {
-  return R"({"dimension": 3, "domain": {"min": [0,0,0], "max": [1,1,1]}, "fluid_blocks": [{"min": )" +
-         block + "}]" + extra + "}";
+  std::string out = "{";
+  auto part = [&](const std::string& key, const std::string& text) {
+    if (extra.find("\"" + key + "\":") != std::string::npos) return;  // extra gives it
+    out += (out.size() > 1 ? ", " : "") + text;
+  };
+  part("dimension", R"("dimension": 3)");
+  part("domain", R"("domain": {"min": [0,0,0], "max": [1,1,1]})");
+  part("fluid_blocks", R"("fluid_blocks": [{"min": )" + block + "}]");
+  return out + extra + "}";
 }
 
 TEST(SceneBuiltins, ListHasTheRequiredScenesWithDescriptions) {
@@ -180,6 +188,18 @@ TEST(SceneErrors, MalformedJsonGivesLineAndColumn) {
   const std::string overflow = parse_error("{\n  \"fluid\": {\"spacing\": 1e999}\n}");
   expect_parts(overflow, {"tank.json", "line 2, column 24", "1e999", "number overflow"});
   EXPECT_EQ(overflow.find("json.exception"), std::string::npos) << overflow;
+}
+
+TEST(SceneErrors, DuplicateKeysAreNamed) {
+  // The last of two keys would win silently: named with its path, inside arrays too.
+  expect_parts(parse_error("{\"dimension\": 2, \"fluid\": {}, \"dimension\": 3}"),
+               {"tank.json", "dimension: appears twice"});
+  expect_parts(parse_error("{\"fluid\": {\"spacing\": 0.02, \"viscosity\": 0, \"spacing\": 0.01}}"),
+               {"tank.json", "fluid.spacing: appears twice"});
+  expect_parts(parse_error("{\"fluid_blocks\": [{\"min\": [0, 0]}, {\"max\": [1, [2]], \"min\": [0], \"max\": [1]}]}"),
+               {"tank.json", "fluid_blocks[1].max: appears twice"});
+  // The same key in other objects is fine (min and max in the domain and in the block).
+  EXPECT_NO_THROW(parse_scene(tank(), "tank.json"));
 }
 
 TEST(SceneErrors, NonUtf8Input) {

@@ -2,6 +2,9 @@
 // stray Latin-1 byte is reported as what it is rather than as a JSON syntax error.
 #include <fmt/format.h>
 
+#include <string>
+#include <vector>
+
 #include "scene/json_reader.h"
 #include "scene/scene_error.h"
 
@@ -57,6 +60,55 @@ std::string explanation(const char* what) {
   return colon == std::string::npos ? s : s.substr(colon + 2);
 }
 
+// Duplicate keys: JSON parsers keep the last silently, so a pasted block's second "spacing"
+// would win unseen. The parse callback keeps the open containers' paths and keys to name one.
+struct DuplicateKey {
+  std::string path;
+};
+
+class KeyTracker {
+ public:
+  void on(nlohmann::json::parse_event_t event, const Json& parsed) {
+    using E = nlohmann::json::parse_event_t;
+    switch (event) {
+      case E::object_start: push(true); break;
+      case E::array_start: push(false); break;
+      case E::key: {
+        Frame& f = open_.back();
+        const std::string key = parsed.get<std::string>();
+        for (const auto& k : f.keys)
+          if (k == key) throw DuplicateKey{join(f.path, key)};
+        f.keys.push_back(key);
+        break;
+      }
+      case E::object_end:
+      case E::array_end: open_.pop_back(); done(); break;
+      case E::value: done(); break;
+    }
+  }
+
+ private:
+  struct Frame {
+    bool object;
+    std::string path;
+    std::vector<std::string> keys;  // objects: the keys so far (a scene object has a handful)
+    std::size_t index = 0;          // arrays: the element being read
+  };
+  static std::string join(const std::string& path, const std::string& key) {
+    return path.empty() ? key : path + "." + key;
+  }
+  std::string child_path() const {
+    if (open_.empty()) return "";
+    const Frame& f = open_.back();
+    return f.object ? join(f.path, f.keys.empty() ? "" : f.keys.back()) : fmt::format("{}[{}]", f.path, f.index);
+  }
+  void push(bool object) { open_.push_back(Frame{object, child_path(), {}, 0}); }
+  void done() {
+    if (!open_.empty() && !open_.back().object) ++open_.back().index;
+  }
+  std::vector<Frame> open_;
+};
+
 }  // namespace
 
 Json parse_json_text(const std::string& text, const std::string& source) {
@@ -66,11 +118,16 @@ Json parse_json_text(const std::string& text, const std::string& source) {
                      fmt::format("byte 0x{:02X}", static_cast<unsigned char>(text[bad])),
                      "expected UTF-8 text");
   }
+  KeyTracker keys;
   try {
-    return Json::parse(text, [&](int depth, nlohmann::json::parse_event_t, Json&) {
+    return Json::parse(text, [&](int depth, nlohmann::json::parse_event_t event, Json& parsed) {
       if (depth > kMaxDepth) throw std::length_error("nesting");
+      keys.on(event, parsed);
       return true;
     });
+  } catch (const DuplicateKey& d) {
+    throw SceneError(source, d.path, "appears twice in its object",
+                     "give each key once (JSON would keep only the last, silently)");
   } catch (const Json::parse_error& e) {
     const Position p = position_of(text, e.byte == 0 ? 0 : e.byte - 1);
     const std::size_t at = e.byte == 0 ? 0 : e.byte - 1;

@@ -1,4 +1,5 @@
 // `rtsph scenes`: the built-in scenes, one per line (or the scene-format reference).
+#include <algorithm>
 #include <cstdio>
 
 #include "apps/commands.h"
@@ -14,7 +15,10 @@ void add_scenes_command(CLI::App& app, int& exit_code) {
     if (*markdown) {
       std::fputs(scene_format_markdown().c_str(), stdout);
     } else {
-      for (const auto& [name, help] : builtin_scenes()) std::printf("%-22s %s\n", name.c_str(), help.c_str());
+      const auto scenes = builtin_scenes();
+      int width = 0;  // the longest name, so every description starts in one column
+      for (const auto& [name, help] : scenes) width = std::max(width, int(name.size()));
+      for (const auto& [name, help] : scenes) std::printf("%-*s  %s\n", width, name.c_str(), help.c_str());
     }
     exit_code = 0;
   });

@@ -1,10 +1,10 @@
 // `rtsph render SCENE --out PATH`: steps the simulation and renders frames headless through
 // EGL (no display needed). PATH.png: the last frame; PATH.mp4: a video through ffmpeg;
 // anything else: a directory of frame_000000.png, ….
-#include <cctype>
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>

@@ -23,6 +23,16 @@ def dam3d():
 
 
 @pytest.fixture
+def validate_context(monkeypatch):
+    """rtsph.validate keeps the backend and `--set` parameters of the case it runs in module state
+    (run_case and main set them, a case run directly reads them): each test that uses this starts
+    from and leaves the state it found, so no test's overrides reach the next one's scenes."""
+    from rtsph.validate import _common
+    monkeypatch.setattr(_common, "_BACKEND", _common._BACKEND)
+    monkeypatch.setattr(_common, "_OVERRIDES", dict(_common._OVERRIDES))
+
+
+@pytest.fixture
 def cli():
     """The rtsph executable: $RTSPH_BINARY (set by scripts/test-python.sh), else the release build."""
     path = os.environ.get("RTSPH_BINARY") or str(REPO / "build" / "release" / "rtsph")

@@ -11,6 +11,8 @@ from rtsph import validate
 from rtsph.validate import __main__ as vmain
 from rtsph.validate.cases import Result
 
+pytestmark = pytest.mark.usefixtures("validate_context")
+
 
 def test_passing_cases_write_the_report(tmp_path):
     out = tmp_path / "v"

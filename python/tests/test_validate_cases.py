@@ -7,6 +7,8 @@ import pytest
 
 from rtsph import validate
 
+pytestmark = pytest.mark.usefixtures("validate_context")
+
 
 # The droplet cases' measuring tools (rtsph.validate.cases): the lattice ball has the ball's
 # volume, and the Irving–Kirkwood pressure of the SPH pressure force reads the EOS pressure in a

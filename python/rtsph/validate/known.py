@@ -2,8 +2,8 @@
 command's run) lets fail, and how far.
 
 Each entry is a case and method that fails its tolerance today, with the error the quick level
-measured (CPU, 2026-11-25) and why it fails (docs/validation.md tells the whole story). With
---known-failures the run exits 0 only when:
+measured (CPU, sessions 34-39: each entry's `why` says which runs) and why it fails
+(docs/validation.md tells the whole story). With --known-failures the run exits 0 only when:
 - every failure is listed here, and its error is at most REGRESSION_MARGIN times the recorded
   one (or the entry's own margin, where the figure is known to move that much between hosts; a
   finite one: "did not finish" is never within);
@@ -48,7 +48,7 @@ _SPH = ("H1, behind the box, is the worst probe: rtsph's slosh falls 0.1-0.4 s b
         "has hit the box and the left wall, at every probe, with every method and at every spacing tried "
         "(docs/validation.md, SPHERIC section, sessions 35-36). The quick spacing, 0.05 m, divides the tank's "
         "width and depth, so the water is MARIN's to 1.8%; eight round-off draws (gravity nudged by 1e-7) read "
-        "WCSPH 3.24-3.37 cm, PBF 3.45-3.80, DFSPH 3.38-3.80 (session 36). At the full 0.025 m PBF fails too")
+        "WCSPH 3.24-3.37 cm, PBF 3.45-3.80, DFSPH 3.38-3.80 (session 36). At the full 0.025 m PBF and DFSPH fail too (since session 44)")
 
 _WAVE = ("the default kernel (the cubic spline at h = s) damps gravity waves: on water settled at rest, the "
          "amplitude after one period is 0.19-0.64 of the first's, at 20 or 40 layers deep, and the mode's energy "

@@ -198,6 +198,9 @@ TEST(SceneErrors, DuplicateKeysAreNamed) {
                {"tank.json", "fluid.spacing: appears twice"});
   expect_parts(parse_error("{\"fluid_blocks\": [{\"min\": [0, 0]}, {\"max\": [1, [2]], \"min\": [0], \"max\": [1]}]}"),
                {"tank.json", "fluid_blocks[1].max: appears twice"});
+  // Nested and dotted spellings of one parameter are the same key given twice.
+  expect_parts(parse_error(tank(R"(, "fluid": {"spacing": 0.05}, "fluid.spacing": 0.02)")),
+               {"tank.json", "fluid.spacing: 0.02: given twice (nested and as a dotted key)"});
   // The same key in other objects is fine (min and max in the domain and in the block).
   EXPECT_NO_THROW(parse_scene(tank(), "tank.json"));
 }

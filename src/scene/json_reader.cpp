@@ -2,7 +2,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <functional>
+#include <string>
+#include <unordered_set>
+#include <vector>
 
 #include "scene/params.h"
 #include "scene/scene_error.h"
@@ -36,8 +40,10 @@ class Reader {
       const std::string rel = group + k;
       const std::string path = prefix + rel;
       if (const auto* f = find(table, rel)) {
+        once(path, v);
         read_value(*f, v, out, path);
       } else if (std::find(arrays.begin(), arrays.end(), rel) != arrays.end()) {
+        once(path, v);
         on_array(rel, v, path);
       } else if (is_group(table, arrays, rel)) {
         read_object(v, table, out, prefix, rel + ".", arrays, on_array);
@@ -141,8 +147,15 @@ class Reader {
                       : "unknown key; did you mean " + prefix + near + "?");
   }
 
+  // A parameter given both nested and dotted ("solver": {"eos": …} and "solver.eos") would keep
+  // whichever came last, silently, as a duplicate key would (json_text.cpp refuses those).
+  void once(const std::string& path, const Json& v) const {
+    if (!read_.insert(path).second) fail(path, v, "given twice (nested and as a dotted key): give it once");
+  }
+
   const std::string& source_;
   int dimension_;
+  mutable std::unordered_set<std::string> read_;  // the paths read so far
 };
 
 std::string element_path(const std::string& path, std::size_t i) {

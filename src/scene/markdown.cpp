@@ -27,8 +27,8 @@ This file is generated from the parameter table in `src/scene/params.cpp`
 - SI units throughout (m, s, kg, m/s, m/s², Pa).
 - Dotted keys below are nested objects, `"solver": {"eos": "tait"}`; the dotted name also works
   as a key, `"solver.eos": "tait"`. Missing keys take the defaults below. Unknown keys are
-  errors, with the nearest known key suggested, and so is a key given twice in one object
-  (JSON readers would keep the last silently).
+  errors, with the nearest known key suggested, and so is a key given twice: twice in one
+  object, or both nested and dotted (JSON readers would keep the last silently).
 - Enumerations are strings, never integers.
 - Vectors are arrays with `dimension` numbers: `[x, y]` in 2D, `[x, y, z]` in 3D; y is up.
   Defaults below are written in 3D; a 2D scene uses their first two components.

@@ -197,3 +197,14 @@ TEST_F(GpuBackend, RunsEveryLiquidMethodAndRefusesTheGas) {
   EXPECT_NE(why.find("\"gas\""), std::string::npos) << why;
   EXPECT_NE(why.find("use --backend cpu"), std::string::npos) << why;
 }
+
+// DFSPH's solve on the GPU keeps ρ0 under a cut kernel: a scene asking for the rest lattice's
+// sums there (solver.dfsph.surface_density = "lattice", CPU only) is refused with one line.
+TEST_F(GpuBackend, RefusesTheLatticeSurfaceDensity) {
+  SimSpec s = vortex(1.0);
+  s.method = "dfsph";
+  s.dfsph_surface_density = SurfaceDensity::Lattice;
+  const std::string why = gpu::gpu_cannot_run(s);
+  EXPECT_NE(why.find("solver.dfsph.surface_density"), std::string::npos) << why;
+  EXPECT_NE(why.find("use --backend cpu"), std::string::npos) << why;
+}

@@ -1,67 +1,11 @@
 #include "scene/params.h"
 
+#include "scene/params_field.h"
 #include "solvers/simulation.h"
 
-#include <algorithm>
-#include <type_traits>
-
 namespace rtsph {
-namespace {
 
-template <class>
-struct member_of;
-template <class O, class T>
-struct member_of<T O::*> {
-  using owner = O;
-  using type = T;
-};
-
-// Builds a field from its description and a pointer to the member that stores it; the kind and
-// accessors follow from the member's type, so the table cannot disagree with SimSpec.
-template <auto M>
-FieldInfo<typename member_of<decltype(M)>::owner> field(ParamMeta meta) {
-  using O = typename member_of<decltype(M)>::owner;
-  using T = typename member_of<decltype(M)>::type;
-  FieldInfo<O> f;
-  static_cast<ParamMeta&>(f) = std::move(meta);
-  if constexpr (std::is_same_v<T, Vec3d>) {
-    f.kind = ParamKind::Vec3;
-    f.get_vec = [](const O& o) { return o.*M; };
-    f.set_vec = [](O& o, const Vec3d& v) { o.*M = v; };
-  } else if constexpr (std::is_same_v<T, std::string>) {
-    f.kind = f.choices.empty() ? ParamKind::String : ParamKind::Enum;
-    f.get_text = [](const O& o) { return o.*M; };
-    f.set_text = [](O& o, const std::string& v) { o.*M = v; };
-  } else if constexpr (std::is_enum_v<T>) {
-    f.kind = ParamKind::Enum;
-    f.get = [](const O& o) { return double(int(o.*M)); };
-    f.set = [](O& o, double v) { o.*M = T(int(v)); };
-  } else if constexpr (std::is_same_v<T, bool>) {
-    f.kind = ParamKind::Bool;
-    f.get = [](const O& o) { return o.*M ? 1.0 : 0.0; };
-    f.set = [](O& o, double v) { o.*M = v != 0; };
-  } else if constexpr (std::is_integral_v<T>) {
-    f.kind = ParamKind::Int;
-    f.get = [](const O& o) { return double(o.*M); };
-    f.set = [](O& o, double v) { o.*M = T(v); };
-  } else {
-    static_assert(std::is_same_v<T, double>, "unsupported parameter type");
-    f.kind = ParamKind::Real;
-    f.get = [](const O& o) { return o.*M; };
-    f.set = [](O& o, double v) { o.*M = v; };
-  }
-  if (f.kind == ParamKind::Enum) {
-    const auto it = std::find(f.choices.begin(), f.choices.end(), f.default_text);
-    f.default_value = double(it - f.choices.begin());
-  }
-  return f;
-}
-
-constexpr double kLength = 1e4;  // m, bound on coordinates: keeps lattices and grids finite
-constexpr double kSpeed = 1e3;   // m/s
-constexpr double kTime = 1e6;    // s
-
-}  // namespace
+using namespace params_detail;
 
 const std::vector<ParamInfo>& parameter_table() {
   static const std::vector<ParamInfo> table = {
@@ -296,6 +240,17 @@ const std::vector<ParamInfo>& parameter_table() {
                                                 "radius ρ it assumes; a solve it acted in ends "
                                                 "with one plain sweep; 0 = plain relaxed Jacobi.",
                                         .live = true}),
+      field<&SimSpec::dfsph_surface_density>({.key = "solver.dfsph.surface_density",
+                                              .default_text = "rest", .choices = {"rest", "lattice"},
+                                              .help = "Where a free surface cuts a particle's kernel, "
+                                                      "the density the clamped solve keeps: rest: ρ0, "
+                                                      "so the surface band compacts until its cut "
+                                                      "sums reach ρ0; lattice: the rest lattice's sum "
+                                                      "under a flat surface at the particle's colour "
+                                                      "gradient, so the band keeps the fluid's spacing. "
+                                                      "For wide kernels (Wendland C2, h ≥ 1.5 "
+                                                      "spacings): with fewer neighbours a disordered "
+                                                      "interior reads as a cut (docs/validation.md)."}),
       field<&SimSpec::gas_smoothing>({.key = "solver.gas.smoothing", .default_text = "adaptive",
                                       .choices = {"adaptive", "global"},
                                       .help = "Gas: adaptive hᵢ = η (mᵢ/ρᵢ)^(1/d) with the cubic "
@@ -375,115 +330,6 @@ const std::vector<ParamInfo>& parameter_table() {
                                                 "Other commands ignore it."}),
   };
   return table;
-}
-
-const std::vector<FieldInfo<FluidBlock>>& fluid_block_fields() {
-  static const std::vector<FieldInfo<FluidBlock>> table = {
-      field<&FluidBlock::min>({.key = "min", .unit = "m", .min = -kLength, .max = kLength,
-                               .help = "Lower corner; particles fill a lattice from min + spacing/2.",
-                               .required = true}),
-      field<&FluidBlock::max>({.key = "max", .unit = "m", .min = -kLength, .max = kLength,
-                               .help = "Upper corner; the block must lie inside the domain.",
-                               .required = true}),
-      field<&FluidBlock::shape>({.key = "shape", .default_text = "box",
-                                 .choices = {"box", "sphere"}, .choices_2d = {"rectangle", "circle"},
-                                 .help = "box (rectangle) fills [min, max]; sphere (circle) fills "
-                                         "the ball inscribed in it."}),
-      field<&FluidBlock::velocity>({.key = "velocity", .unit = "m/s", .min = -kSpeed, .max = kSpeed,
-                                    .help = "Initial velocity of the block's particles."}),
-  };
-  return table;
-}
-
-const std::vector<FieldInfo<ObstacleSpec>>& obstacle_fields() {
-  static const std::vector<FieldInfo<ObstacleSpec>> table = {
-      field<&ObstacleSpec::shape>({.key = "shape", .default_text = "box",
-                                   .choices = {"box", "sphere"},
-                                   .choices_2d = {"rectangle", "circle"},
-                                   .help = "box/sphere in 3D, rectangle/circle in 2D."}),
-      field<&ObstacleSpec::center>({.key = "center", .unit = "m", .min = -kLength, .max = kLength,
-                                    .help = "Centre at t = 0; must lie inside the domain.",
-                                    .required = true}),
-      field<&ObstacleSpec::half_extents>({.key = "half_extents", .unit = "m", .min = 1e-6,
-                                          .max = kLength, .default_vec = {0.1, 0.1, 0.1},
-                                          .help = "Half the side lengths of a box/rectangle "
-                                                  "(the full size is twice this)."}),
-      field<&ObstacleSpec::radius>({.key = "radius", .unit = "m", .min = 1e-6, .max = kLength,
-                                    .default_value = 0.1, .help = "Radius of a sphere/circle."}),
-      field<&ObstacleSpec::motion>({.key = "motion.type", .default_text = "static",
-                                    .choices = {"static", "velocity", "path"},
-                                    .help = "static; velocity: constant motion.velocity and "
-                                            "motion.angular_velocity; path: follows "
-                                            "motion.keyframes."}),
-      field<&ObstacleSpec::velocity>({.key = "motion.velocity", .unit = "m/s", .min = -kSpeed,
-                                      .max = kSpeed, .help = "Constant velocity (velocity motion)."}),
-      field<&ObstacleSpec::angular_velocity>({.key = "motion.angular_velocity", .unit = "rad/s",
-                                              .min = -1000, .max = 1000,
-                                              .help = "Rotation about the centre (velocity motion): "
-                                                      "the axis is its direction, the rate its "
-                                                      "length. 2D: one number, the rate about z.",
-                                              .z_only_in_2d = true}),
-  };
-  return table;
-}
-
-const std::vector<FieldInfo<Keyframe>>& keyframe_fields() {
-  static const std::vector<FieldInfo<Keyframe>> table = {
-      field<&Keyframe::time_s>({.key = "time", .unit = "s", .min = 0, .max = kTime,
-                                .help = "Time of the keyframe; strictly increasing.",
-                                .required = true}),
-      field<&Keyframe::position>({.key = "position", .unit = "m", .min = -kLength, .max = kLength,
-                                  .help = "Obstacle centre; linear interpolation in between.",
-                                  .required = true}),
-      field<&Keyframe::angle_rad>({.key = "angle", .unit = "rad", .min = -1e4, .max = 1e4,
-                                   .help = "Rotation about the z axis through the centre."}),
-  };
-  return table;
-}
-
-const std::vector<FieldInfo<EmitterSpec>>& emitter_fields() {
-  static const std::vector<FieldInfo<EmitterSpec>> table = {
-      field<&EmitterSpec::position>({.key = "position", .unit = "m", .min = -kLength, .max = kLength,
-                                     .help = "Nozzle centre; must lie inside the domain.",
-                                     .required = true}),
-      field<&EmitterSpec::direction>({.key = "direction", .min = -kLength, .max = kLength,
-                                      .default_vec = {1, 0, 0},
-                                      .help = "Jet direction, normalised on use; must be non-zero."}),
-      field<&EmitterSpec::speed>({.key = "speed", .unit = "m/s", .min = 0, .max = kSpeed,
-                                  .min_exclusive = true, .default_value = 2,
-                                  .help = "Exit speed of the jet."}),
-      field<&EmitterSpec::width>({.key = "width", .unit = "m", .min = 1e-5, .max = 100,
-                                  .default_value = 0.1,
-                                  .help = "Nozzle width (2D) or diameter (3D); at least "
-                                          "fluid.spacing."}),
-      field<&EmitterSpec::rate>({.key = "rate", .unit = "1/s", .min = 0, .max = 1e9,
-                                 .default_value = 0,
-                                 .help = "Particles per second; 0 = continuous jet, a layer "
-                                         "every spacing/speed."}),
-      field<&EmitterSpec::start_s>({.key = "start", .unit = "s", .min = 0, .max = kTime,
-                                    .default_value = 0, .help = "Time the jet starts."}),
-      field<&EmitterSpec::stop_s>({.key = "stop", .unit = "s", .min = 0, .max = 1e30,
-                                   .default_value = 1e30,
-                                   .help = "Time the jet stops; after start."}),
-      field<&EmitterSpec::max_particles>({.key = "max_particles", .min = 0, .max = 1e9,
-                                          .default_value = 100000,
-                                          .help = "The emitter stops after this many particles."}),
-  };
-  return table;
-}
-
-const std::vector<ArrayMeta>& spec_arrays() {
-  static const std::vector<ArrayMeta> arrays = {
-      {"fluid_blocks", "Boxes filled with fluid at t = 0."},
-      {"obstacles", "Solid bodies sampled as boundary-particle shells; static or moving."},
-      {"emitters", "Nozzles that add fluid while running."},
-  };
-  return arrays;
-}
-
-const ArrayMeta& keyframes_array() {
-  static const ArrayMeta a{"motion.keyframes", "Keyframes of a path motion, sorted by time."};
-  return a;
 }
 
 const ParamInfo* find_param(std::string_view key) {

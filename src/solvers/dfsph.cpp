@@ -15,6 +15,7 @@ Dfsph<D>::Dfsph(const SimSpec& spec, int threads) : W(spec, threads) {
   // Several sums per step over one neighbourhood: walk lists, not the grid.
   this->keep_neighbour_lists();
   relax_ = dfsph::jacobi_relaxation<D>(spec_, prm_);
+  if (spec_.dfsph_surface_density == SurfaceDensity::Lattice) cut_sums_ = CutSumTable::build<D>(spec_, prm_);
   // Derived after each neighbour update (saved, so a resumed step needs no recompute).
   this->add_method_field({"factor", &factor_, false, true});
   this->add_method_field({"neighbours", &neighbours_, false, true});

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "solvers/fluid_world.h"
+#include "solvers/surface_density.h"
 
 namespace rtsph {
 
@@ -91,6 +92,10 @@ class Dfsph final : public FluidWorld<D> {
   PairCache<D> pair_grad_;  // ∇Wᵢⱼ per listed pair
   std::array<AlignedArray<Real>, D> wall_grad_;
   AlignedArray<Real> wall_rate_;
+  // solver.dfsph.surface_density = "lattice": the density each particle's clamped solve keeps,
+  // ρ0 τ(|cᵢ|) from its colour gradient (surface_density.h); rebuilt by compute_factors().
+  CutSumTable cut_sums_;
+  AlignedArray<Real> target_;
   // Fully periodic, two-sided solves: the kernel-sum density's mean over the fluid minus ρ0, which
   // no velocity field can remove (correct_density_error). 0 otherwise.
   double density_bias_ = 0;

@@ -77,6 +77,9 @@ void Dfsph<D>::compute_factors(bool with_density) {
   pair_grad_.resize(list);
   for (int k = 0; k < D; ++k) wall_grad_[k].resize(n);
   wall_rate_.resize(n);
+  const bool lattice = spec_.dfsph_surface_density == SurfaceDensity::Lattice;
+  const double rho0 = prm_.rho0, inv_rho0 = 1.0 / rho0;
+  if (lattice) target_.resize(n);
   Real* grad_out[D];  // hoisted: the loop's stores then cannot be taken to move the arrays
   for (int k = 0; k < D; ++k) grad_out[k] = pair_grad_.at(0, k);
   const Real* const packed_x = this->pack_positions();  // records instead of gathers
@@ -121,15 +124,17 @@ void Dfsph<D>::compute_factors(bool with_density) {
                                         rate += G * d[k] * simd::at(bv[k], j);
                                       }
                                     });
-        double dot = 0;
+        double dot = 0, colour = 0;
         for (int k = 0; k < D; ++k) {
           const double f = double(mass) * simd::hsum(gf[k]), w = simd::hsum(gb[k]);
           wall_grad_[k][i] = Real(w);
           dot += (f + 2.0 * w) * (f + 2.0 * w);
+          colour += (f + w) * (f + w);  // |Σⱼ m∇Wᵢⱼ + Σ_b Ψ_b∇W_ib|²: ρ0²|c|², walls once
         }
         wall_rate_[i] = simd::hsum(rate);
         const double denom = dot + double(mass) * mass * simd::hsum(sq);
         factor_[i] = denom > tiny ? Real(1.0 / denom) : Real(0);
+        if (lattice) target_[i] = Real(rho0 * cut_sums_.fraction(std::sqrt(colour) * inv_rho0));
         neighbours_[i] = simd::hsum(cnt);
         if constexpr (kDensity) rho[i] = mass * simd::hsum(wf) + simd::hsum(wb);
       }
@@ -165,6 +170,7 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
   const double rho0 = prm_.rho0, inv_rho0 = 1.0 / rho0;
   const bool clamp = spec_.clamp_negative_pressure;
   const double to_p = density ? 1.0 / (dt * dt) : 1.0 / dt;
+  const bool lattice = clamp && spec_.dfsph_surface_density == SurfaceDensity::Lattice;
   const Real* const packed_v = packed_v_.data();  // written by the apply_pressure before
   // Particles with a thin neighbourhood (free surface, spray) get no divergence correction:
   // their missing neighbours read as expansion or compression that is not there (2017, §4.2).
@@ -192,7 +198,9 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
       for (int k = 0; k < D; ++k) wall += double(vi[k]) * wall_grad_[k][i];
       const double rate = double(mass) * simd::hsum(rf) + 2.0 * wall;  // Dρᵢ/Dt, the ghosts' (eq. 9 above)
       // Density: r = ρ*ᵢ − ρ0 with ρ*ᵢ = ρᵢ + Δt Dρᵢ/Dt; divergence: r = Dρᵢ/Dt.
-      double r = density ? fluid_.rho[i] + dt * rate - rho0 - density_bias_ : rate;
+      // The clamped density solve keeps ρ0, or under a cut kernel the lattice's sum there.
+      const double target = lattice ? double(target_[i]) : rho0;
+      double r = density ? fluid_.rho[i] + dt * rate - target - density_bias_ : rate;
       const bool thin = !density && neighbours_[i] < min_neighbours;
       double p = thin ? 0.0 : total[i] + relax_ * r * factor_[i] * to_p;
       if (clamp) p = std::max(p, 0.0);

@@ -19,6 +19,7 @@ enum class BlockShape { Box, Ball };  // 2D: "rectangle" and "circle"
 enum class GasEos { Polytropic, Adiabatic };
 enum class GasSmoothing { Adaptive, Global };
 enum class GravitySolver { Direct, Tree };
+enum class SurfaceDensity { Rest, Lattice };  // solver.dfsph.surface_density
 /// Periodic axes as a bit set (x = 1, y = 2, z = 4), spelled "none", "x", "y", "xy", … in JSON.
 enum class PeriodicAxes { None, X, Y, XY, Z, XZ, YZ, XYZ };
 inline bool axis_is_periodic(PeriodicAxes p, int axis) { return (int(p) >> axis) & 1; }
@@ -110,6 +111,7 @@ struct SimSpec {
   double dfsph_max_divergence_error = 1e-3;  // mean (Dρ/Dt)·dt/ρ0 at which the divergence solve stops
   int dfsph_max_iterations = 100;
   double dfsph_chebyshev = 0.95;             // ρ of the Chebyshev acceleration (0 = plain Jacobi)
+  SurfaceDensity dfsph_surface_density = SurfaceDensity::Rest;  // the clamped solve's target under a cut kernel
 
   // Gas, self-gravitating SPH with adaptive smoothing lengths (method "gas"; docs/self-gravity.md)
   GasSmoothing gas_smoothing = GasSmoothing::Adaptive;

@@ -12,18 +12,13 @@
 #include "solvers/pbf.h"
 #include "core/kernels.h"
 #include "solvers/simulation.h"
+#include "lattice_params.h"
 #include "test_scenes.h"
 
 namespace rtsph {
 namespace {
 
-// The constants the weights read (FluidWorld resolves the same from the spec).
-ResolvedParams resolve_params(const SimSpec& s) {
-  ResolvedParams p;
-  p.h = s.smoothing_ratio * s.spacing;
-  p.support = support_ratio(s.kernel) * p.h;
-  return p;
-}
+using test::resolve_params;
 
 template <int D>
 double lambda_max(const SimSpec& spec) {

@@ -12,18 +12,13 @@
 #include "core/kernels.h"
 #include "solvers/simulation.h"
 #include "solvers/surface_density.h"
+#include "lattice_params.h"
 #include "test_scenes.h"
 
 namespace rtsph {
 namespace {
 
-ResolvedParams resolve_params(const SimSpec& s) {
-  ResolvedParams p;
-  p.h = s.smoothing_ratio * s.spacing;
-  p.support = support_ratio(s.kernel) * p.h;
-  p.rho0 = s.rest_density;
-  return p;
-}
+using test::resolve_params;
 
 // The 2D tank of the measurements in docs/validation.md (session 47): 0.2 m wide, 0.1 m deep,
 // spacing 0.01 m, DFSPH with Wendland C2 at h = 1.5 spacings and three wall layers.

@@ -3,7 +3,8 @@
 //   D rho_i/Dt = sum_j m (v_i - v_j).grad W_ij + 2 sum_b Psi_b (v_i - v_b).grad W_ib   (eq. 9)
 // (a wall sample stands for a ghost that mirrors the particle's velocity relative to the wall,
 // as its pressure: the CPU's src/solvers/dfsph_solve.cpp)
-// and the residual r = rho_i + dt D rho_i/Dt - rho0 (density; minus the periodic bias) or
+// and the residual r = rho_i + dt D rho_i/Dt - rho0 (density; minus the periodic bias; with
+// solver.dfsph.surface_density "lattice" and clamped pressure, the target factor.w instead of rho0) or
 // r = D rho_i/Dt (divergence), the sweep's pressure P = total + omega r alpha_i / dt^2 (or / dt),
 // projected to P >= 0 when negative pressure is clamped; solve[i].x gets P - total. solve[i].w
 // gets the particle's share of the mean relative error: |r| where pressure acts, compression
@@ -13,6 +14,7 @@ BUFFER_POS BUFFER_VEL BUFFER_DENS BUFFER_FKEY BUFFER_FSTART BUFFER_WGRAD BUFFER_
 uniform int density;          // 1: the density solve, 0: the divergence solve
 uniform double relax, to_p, bias, error_scale;  // omega; 1/dt^2 or 1/dt; kg/m^3; 1/rho0 or dt/rho0
 uniform float min_neighbours;
+uniform int lattice;          // 1: the clamped density solve keeps factor.w (dfsph_factors.comp)
 void main() {
   uint i = gl_GlobalInvocationID.x;
   if (i >= P.fluid_count || stats[RTSPH_STAT_GATE].x == 0.0lf) return;
@@ -30,9 +32,10 @@ void main() {
   }
   vec4 fac = factor[i];
   double rate = double(P.mass) * double(rf) + 2.0lf * (double(dot(vi, wgrad[i].xyz)) - double(fac.z));
-  double r = density != 0 ? double(dens[i].x) + double(P.dt) * rate - double(P.rho0) - bias : rate;
-  bool thin = density == 0 && fac.y < min_neighbours;
   bool clamp = (P.flags & RTSPH_F_CLAMP_NEGATIVE) != 0u;
+  double target = lattice != 0 && clamp ? double(fac.w) : double(P.rho0);
+  double r = density != 0 ? double(dens[i].x) + double(P.dt) * rate - target - bias : rate;
+  bool thin = density == 0 && fac.y < min_neighbours;
   vec4 s = solve[i];
   double p = thin ? 0.0lf : double(s.z) + relax * r * double(fac.x) * to_p;
   if (clamp) p = max(p, 0.0lf);

@@ -20,9 +20,6 @@ std::string gpu_cannot_run(const SimSpec& spec) {
   if (!gpu_supports_method(spec.method))
     return fmt::format("scene '{}': solver.method = \"{}\": the GPU backend runs \"wcsph\", \"pbf\" and \"dfsph\"; use --backend cpu",
                        spec.name, spec.method);
-  if (spec.method == "dfsph" && spec.dfsph_surface_density != SurfaceDensity::Rest)
-    return fmt::format("scene '{}': solver.dfsph.surface_density = \"lattice\": the GPU backend's DFSPH keeps \"rest\"; use --backend cpu",
-                       spec.name);
   return {};
 }
 

@@ -2,12 +2,20 @@
 
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
 
 #include "core/timer.h"
 #include "gpu/layout.h"
 #include "solvers/dfsph.h"
+#include "solvers/surface_density.h"
 
 namespace rtsph::gpu {
+
+namespace {
+constexpr int kCutRows = RTSPH_CUT_ROWS;  // the factors shader's table (layout.h)
+}  // namespace
 
 template <int D>
 GpuDfsph<D>::GpuDfsph(const SimSpec& spec, int threads) : GpuWorld<D>(spec, threads) {
@@ -25,6 +33,14 @@ GpuDfsph<D>::GpuDfsph(const SimSpec& spec, int threads) : GpuWorld<D>(spec, thre
   gate_ = ComputeProgram("dfsph_gate.comp", d);
   relax_ = dfsph::jacobi_relaxation<D>(this->spec_, this->prm_);
   tiny_ = 1e-6 * this->lattice_gradient_sum();
+  if (spec.dfsph_surface_density == SurfaceDensity::Lattice) {
+    const CutSumTable t = CutSumTable::build<D>(spec, this->prm_);
+    if (t.rows().size() > std::size_t(kCutRows))
+      throw std::invalid_argument(fmt::format(
+          "scene '{}': solver.dfsph.surface_density = \"lattice\": the kernel reaches {} lattice layers, the "
+          "GPU backend's table holds {}; use --backend cpu", spec.name, t.rows().size(), kCutRows));
+    for (const auto& [c, tau] : t.rows()) cut_table_.insert(cut_table_.end(), {float(c), float(tau)});
+  }
   // The CPU's method fields, in the CPU's order (Dfsph's constructor): a checkpoint lists them.
   this->add_method_field({"factor", &factor_, false, true});
   this->add_method_field({"neighbours", &neighbours_, false, true});
@@ -126,6 +142,10 @@ void GpuDfsph<D>::factors(bool with_density) {
   bind_method();
   factors_.set("tiny", Real(tiny_));
   factors_.set("with_density", GLint(with_density ? 1 : 0));
+  const GLint rows = GLint(cut_table_.size() / 2);
+  factors_.set("cut_rows", rows);
+  if (rows > 0)
+    glProgramUniform2fv(factors_.id(), glGetUniformLocation(factors_.id(), "cut_table"), rows, cut_table_.data());
   factors_.dispatch(this->fluid_.size());
 }
 
@@ -142,6 +162,7 @@ void GpuDfsph<D>::residual(bool density, double dt) {
   const GLuint prog = residual_.id();
   residual_.set("density", GLint(density ? 1 : 0));
   residual_.set("min_neighbours", dfsph::kMinNeighbours<D>);
+  residual_.set("lattice", GLint(cut_table_.empty() ? 0 : 1));
   glProgramUniform1d(prog, glGetUniformLocation(prog, "relax"), relax_);
   glProgramUniform1d(prog, glGetUniformLocation(prog, "to_p"), density ? 1.0 / (dt * dt) : 1.0 / dt);
   glProgramUniform1d(prog, glGetUniformLocation(prog, "bias"), density ? density_bias_ : 0.0);

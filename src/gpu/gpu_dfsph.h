@@ -1,4 +1,5 @@
 #pragma once
+#include <vector>
 // Divergence-Free SPH on the GPU: the CPU method's step (solvers/dfsph.h; Bender & Koschier
 // 2017, Algorithm 1) stage for stage, each stage a compute pass (shaders/gpu/dfsph_*.comp). The
 // solves stop on the same mean residual, tested on the device after each sweep (dfsph_gate.comp):
@@ -40,6 +41,7 @@ class GpuDfsph final : public GpuWorld<D> {
   AlignedArray<Real> factor_, neighbours_, pressure_, last_step_, warm_density_, warm_divergence_;
   double relax_ = 0.5;      // Jacobi ω (dfsph::jacobi_relaxation)
   double tiny_ = 0;         // 1/α below this: no neighbours to push
+  std::vector<float> cut_table_;  // solver.dfsph.surface_density "lattice": (|c|, τ) rows; else empty
   double density_bias_ = 0; // as the CPU's Dfsph::correct_density_error
   dfsph::Counters counters_;  // saved as the CPU's are
   // Sweeps the last divergence [0] and density [1] solves took: the next one's first batch.

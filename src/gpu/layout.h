@@ -59,6 +59,9 @@ struct alignas(32) dvec4 { double x, y, z, w; };
 #define RTSPH_STAT_RESIDUAL 7
 #define RTSPH_STAT_GATE 8
 #define RTSPH_BINDINGS 32
+// Rows of DFSPH's cut-sum table (solver.dfsph.surface_density "lattice", dfsph_factors.comp): the
+// layers of a flat surface a support of up to 15 spacings cuts.
+#define RTSPH_CUT_ROWS 16
 #define RTSPH_U_PARAMS 0     // uniform block binding of SphParams
 // PBF's own arrays borrow the gather bindings (the sort rebinds those before each use; no PBF
 // pass runs during a sort), so that no driver needs more than 32 storage bindings.

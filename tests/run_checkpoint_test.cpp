@@ -96,6 +96,19 @@ TEST(RunCheckpoint, ResumeIsBitwiseExactWithEmittersAndMovingObstacle) {
   check_resume_is_exact(s, 0.3 * sanitizer_scale());
 }
 
+// DFSPH with the surface band at the rest lattice's cut sums (solver.dfsph.surface_density
+// "lattice"): the per-particle targets are not saved but rebuilt from the positions on load
+// (Dfsph::state_loaded), to the same bits.
+TEST(RunCheckpoint, ResumeIsBitwiseExactDfsphLatticeSurface) {
+  SimSpec s = test::dam_break_2d(0.5, 0.02);
+  s.method = "dfsph";
+  s.kernel = KernelType::WendlandC2;
+  s.smoothing_ratio = 1.5;
+  s.boundary_layers = 3;
+  s.dfsph_surface_density = SurfaceDensity::Lattice;
+  EXPECT_GT(check_resume_is_exact(s, 0.1 * sanitizer_scale()), 20u);
+}
+
 TEST(RunCheckpoint, ResumeIsBitwiseExactFixedDtTwoThreads) {
   SimSpec s = test::tank(2, 0.5, 0.3, 0.02);
   s.time_step_mode = TimeStepMode::Fixed;

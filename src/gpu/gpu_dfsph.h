@@ -1,5 +1,4 @@
 #pragma once
-#include <vector>
 // Divergence-Free SPH on the GPU: the CPU method's step (solvers/dfsph.h; Bender & Koschier
 // 2017, Algorithm 1) stage for stage, each stage a compute pass (shaders/gpu/dfsph_*.comp). The
 // solves stop on the same mean residual, tested on the device after each sweep (dfsph_gate.comp):
@@ -8,6 +7,7 @@
 // the grid's cell ranges and evaluate the kernel gradients again, where the CPU caches them per
 // listed pair: the GPU recomputes rather than streams.
 #include <string>
+#include <vector>
 
 #include "gpu/gpu_world.h"
 #include "solvers/dfsph.h"

@@ -106,7 +106,8 @@ TEST(RunCheckpoint, ResumeIsBitwiseExactDfsphLatticeSurface) {
   s.smoothing_ratio = 1.5;
   s.boundary_layers = 3;
   s.dfsph_surface_density = SurfaceDensity::Lattice;
-  EXPECT_GT(check_resume_is_exact(s, 0.1 * sanitizer_scale()), 20u);
+  // Several steps in each half, also at the sanitizers' quarter length (0.05 s there: 20 steps).
+  EXPECT_GE(check_resume_is_exact(s, 0.1 * sanitizer_scale()), 10u);
 }
 
 TEST(RunCheckpoint, ResumeIsBitwiseExactFixedDtTwoThreads) {

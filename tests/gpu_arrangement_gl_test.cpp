@@ -202,7 +202,7 @@ TEST_F(GpuBackend, RunsEveryLiquidMethodAndRefusesTheGas) {
 // a 2D tank at rest, Wendland C2 at h = 1.5 spacings, three wall layers, on both backends for
 // 10 steps (DFSPH's solves stop on a tolerance: TransportVelocityAsOnTheCpu says why 10). The
 // target moves the top layers against ρ0's run, and the GPU's run is the CPU's.
-TEST_F(GpuBackend, LatticeSurfaceDensityAsOnTheCpu) {
+SimSpec wide_kernel_tank() {
   SimSpec s;
   s.name = "lattice_tank";
   s.dimension = 2;
@@ -213,6 +213,11 @@ TEST_F(GpuBackend, LatticeSurfaceDensityAsOnTheCpu) {
   s.smoothing_ratio = 1.5;
   s.boundary_layers = 3;
   s.fluid_blocks.push_back({{{0, 0, 0}}, {{0.2, 0.1, 0}}, {}});
+  return s;
+}
+
+TEST_F(GpuBackend, LatticeSurfaceDensityAsOnTheCpu) {
+  SimSpec s = wide_kernel_tank();
   SimSpec rest = s;
   s.dfsph_surface_density = SurfaceDensity::Lattice;
   EXPECT_EQ(gpu::gpu_cannot_run(s), "");
@@ -227,4 +232,28 @@ TEST_F(GpuBackend, LatticeSurfaceDensityAsOnTheCpu) {
   EXPECT_GT(effect, 1e-3 * s.spacing);  // the target acts (measured: 8.4e-4 m)
   EXPECT_LT(diff, 0.1 * effect);
   EXPECT_LT(diff, 2e-5 * s.spacing);     // round-off (measured: 4.5e-8 m)
+}
+
+// DFSPH's pressure stabilisation (solver.dfsph.pressure_stabilisation): the same tank with the
+// lattice's surface sums and β = 1, against β = 0, on both backends for 10 steps. The Laplacian
+// changes the pressure, and the GPU's is the CPU's.
+TEST_F(GpuBackend, PressureStabilisationAsOnTheCpu) {
+  SimSpec s = wide_kernel_tank();
+  s.dfsph_surface_density = SurfaceDensity::Lattice;
+  SimSpec off = s;
+  s.dfsph_pressure_stabilisation = 1.0;
+  EXPECT_EQ(gpu::gpu_cannot_run(s), "");
+  auto cpu = make_simulation(s, 1), without = make_simulation(off, 1);
+  auto gpu = gpu::make_gpu_simulation(s, 1);
+  for (int k = 0; k < 10; ++k) { cpu->step(); gpu->step(); without->step(); }
+  const double diff = worst_pressure_difference(*gpu, *cpu);
+  const double effect = worst_pressure_difference(*without, *cpu);
+  const double zero[3] = {0, 0, 0};
+  std::printf("stabilised tank: 10 steps, worst GPU - CPU pressure %.3g Pa, position %.3g m; beta = 1 "
+              "moved a pressure by %.3g Pa against beta = 0\n", diff,
+              worst_position_difference(*gpu, *cpu, zero), effect);
+  const double bottom = 1000.0 * 9.81 * 0.1;
+  EXPECT_GT(effect, 1e-3 * bottom);  // the Laplacian acts (measured: 30.3 Pa)
+  EXPECT_LT(diff, 0.05 * effect);
+  EXPECT_LT(diff, 1e-4 * bottom);    // round-off (measured: 0.011 Pa)
 }

@@ -3,6 +3,7 @@
 // (or skips it), and comparisons of a GPU run with a CPU run particle by particle (by id).
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -38,6 +39,17 @@ inline double relative_rms_density(const Simulation& a, const Simulation& b) {
     den += ra * ra;
   }
   return std::sqrt(num / den);
+}
+
+// The largest pressure difference between a particle in `a` and the same particle in `b` (Pa).
+inline double worst_pressure_difference(const Simulation& a, const Simulation& b) {
+  const ParticleView va = a.fluid(), vb = b.fluid();
+  EXPECT_EQ(va.count, vb.count);
+  const auto ib = index_by_id(vb);
+  double worst = 0;
+  for (std::size_t i = 0; i < va.count; ++i)
+    worst = std::max(worst, std::abs(double(va.pressure[i]) - double(vb.pressure[ib.at(va.id[i])])));
+  return worst;
 }
 
 // The largest distance between a particle in `a` and the same particle in `b`, seen across the

@@ -84,7 +84,8 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
                           "solver.pbf.omega", "solver.pbf.scorr_k", "solver.pbf.scorr_n",
                           "solver.pbf.scorr_dq", "solver.pbf.xsph", "solver.pbf.vorticity",
                           "solver.dfsph.max_density_error", "solver.dfsph.max_divergence_error",
-                          "solver.dfsph.max_iterations", "solver.dfsph.chebyshev", "domain.open", "solver.gas.eta",
+                          "solver.dfsph.max_iterations", "solver.dfsph.chebyshev",
+                          "solver.dfsph.surface_density", "solver.dfsph.pressure_stabilisation", "domain.open", "solver.gas.eta",
                           "solver.gas.smoothing", "solver.gas.global_b",
                           "solver.gas.eos", "solver.gas.polytropic_k", "solver.gas.gamma",
                           "solver.gas.damping", "solver.gas.spring", "solver.gas.self_gravity",
@@ -109,7 +110,7 @@ TEST(SceneParams, TableHasTheSpecifiedKeys) {
                                          "solver.pbf.xsph", "solver.pbf.vorticity",
                                          "solver.dfsph.max_density_error",
                                          "solver.dfsph.max_divergence_error",
-                                         "solver.dfsph.max_iterations", "solver.dfsph.chebyshev",
+                                         "solver.dfsph.max_iterations", "solver.dfsph.chebyshev", "solver.dfsph.pressure_stabilisation",
                                          // the gas method reads these afresh each step
                                          "solver.gas.damping", "solver.gas.spring",
                                          "solver.gas.self_gravity", "solver.gas.theta"}));

@@ -163,7 +163,11 @@ void GpuDfsph<D>::residual(bool density, double dt) {
   residual_.set("density", GLint(density ? 1 : 0));
   residual_.set("min_neighbours", dfsph::kMinNeighbours<D>);
   residual_.set("lattice", GLint(cut_table_.empty() ? 0 : 1));
-  glProgramUniform1d(prog, glGetUniformLocation(prog, "relax"), relax_);
+  // The pressure stabilisation (the CPU's Dfsph::residual): the density solve only.
+  const double beta = density ? this->spec_.dfsph_pressure_stabilisation : 0.0;
+  const double mass = this->prm_.mass;
+  glProgramUniform1d(prog, glGetUniformLocation(prog, "gain"), relax_ / (1.0 + beta));
+  glProgramUniform1d(prog, glGetUniformLocation(prog, "stab"), beta * dt * dt * mass * mass);
   glProgramUniform1d(prog, glGetUniformLocation(prog, "to_p"), density ? 1.0 / (dt * dt) : 1.0 / dt);
   glProgramUniform1d(prog, glGetUniformLocation(prog, "bias"), density ? density_bias_ : 0.0);
   glProgramUniform1d(prog, glGetUniformLocation(prog, "error_scale"),

@@ -251,6 +251,14 @@ const std::vector<ParamInfo>& parameter_table() {
                                                       "For wide kernels (Wendland C2, h ≥ 1.5 "
                                                       "spacings): with fewer neighbours a disordered "
                                                       "interior reads as a cut (docs/validation.md)."}),
+      field<&SimSpec::dfsph_pressure_stabilisation>(
+          {.key = "solver.dfsph.pressure_stabilisation", .min = 0, .max = 10, .default_value = 0,
+           .help = "β of a Laplacian of the pressure in DFSPH's density solve (as Brezzi & "
+                   "Pitkäranta 1984 for finite elements): fixes the layer-alternating pressure a "
+                   "lattice's gradient sums cannot see, which otherwise grows near a free surface "
+                   "(stripes in the pressure colours); zero for a hydrostatic pressure. 0 = off; "
+                   "1 pairs with solver.dfsph.surface_density \"lattice\" (docs/validation.md).",
+           .live = true}),
       field<&SimSpec::gas_smoothing>({.key = "solver.gas.smoothing", .default_text = "adaptive",
                                       .choices = {"adaptive", "global"},
                                       .help = "Gas: adaptive hᵢ = η (mᵢ/ρᵢ)^(1/d) with the cubic "

@@ -19,6 +19,19 @@
 // so a residual r gives Pᵢ = r αᵢ / Δt² (density, r = ρ*ᵢ − ρ0) or r αᵢ / Δt (divergence,
 // r = Dρᵢ/Dt): eqs. 9-12 in this notation. Each solve starts from the last step's pressure
 // (warm start, section 4.3) and stops when the mean residual reaches its tolerance.
+//
+// Pressure stabilisation (solver.dfsph.pressure_stabilisation β, off at 0). The pressure is a
+// multiplier seen only through its gradient sum, and on a lattice that sum has a null space: a
+// pressure alternating from layer to layer (wavenumber π/s) exerts no force (solvers/jacobi.h),
+// so no sweep corrects it and each sweep adds the residual's share of that mode to it; the warm
+// start carries it on. The layer-averaged pressure of a 3D tank at rest then alternates by up to
+// ±40% near the surface (docs/validation.md, standing wave, session 47). As for equal-order
+// finite elements (Brezzi & Pitkäranta 1984), the density solve's residual gets a Laplacian of
+// the pressure, r − β Δt² Σⱼ |m∇Wᵢⱼ|² (Pᵢ − Pⱼ): zero for a pressure linear across a full
+// support (the hydrostatic one), largest for the alternating mode, which it thereby fixes. Walls
+// mirror Pᵢ and add nothing. Its diagonal is β times the operator's (eq. 8 inside the fluid), so
+// the sweep divides by 1 + β; the graph Laplacian's largest eigenvalue (2 over that diagonal) is
+// below the operator's (2.15-5.67: jacobi_relaxation), so ω stays stable.
 #include <algorithm>
 #include <array>
 #include <type_traits>
@@ -175,11 +188,30 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
   // Particles with a thin neighbourhood (free surface, spray) get no divergence correction:
   // their missing neighbours read as expansion or compression that is not there (2017, §4.2).
   const Real min_neighbours = dfsph::kMinNeighbours<D>;
+  // The stabilisation (above): β Δt² m² scales Σⱼ |∇Wᵢⱼ|² (Pᵢ − Pⱼ); the density solve only.
+  const double beta = density ? spec_.dfsph_pressure_stabilisation : 0.0;
+  const double stab = beta * dt * dt * double(mass) * double(mass);
+  const double gain = relax_ / (1.0 + beta);  // relax_ itself at β = 0: the same bits
+  const Real* const P = total.data();
   return pool_.parallel_reduce(n, 0.0, [&](std::size_t b, std::size_t e) {
     double sum = 0;
     for (std::size_t i = b; i < e; ++i) {
       Real vi[D];
       for (int k = 0; k < D; ++k) vi[k] = fv[k][i];
+      double laplacian = 0;  // Σⱼ |∇Wᵢⱼ|² (Pᵢ − Pⱼ)
+      if (beta > 0) {
+        const Real Pi = P[i];
+        f8 lf{};
+        for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
+          f8 g2{};
+          for (int k = 0; k < D; ++k) {
+            const f8 g = simd::load(pair_grad_.at(slot, k));
+            g2 += g * g;
+          }
+          lf += (Pi - simd::at(P, j)) * g2;
+        });
+        laplacian = simd::hsum(lf);
+      }
       f8 rf{};
       if constexpr (D == 3) {
         for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
@@ -200,9 +232,9 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
       // Density: r = ρ*ᵢ − ρ0 with ρ*ᵢ = ρᵢ + Δt Dρᵢ/Dt; divergence: r = Dρᵢ/Dt.
       // The clamped density solve keeps ρ0, or under a cut kernel the lattice's sum there.
       const double target = lattice ? double(target_[i]) : rho0;
-      double r = density ? fluid_.rho[i] + dt * rate - target - density_bias_ : rate;
+      double r = density ? fluid_.rho[i] + dt * rate - target - density_bias_ - stab * laplacian : rate;
       const bool thin = !density && neighbours_[i] < min_neighbours;
-      double p = thin ? 0.0 : total[i] + relax_ * r * factor_[i] * to_p;
+      double p = thin ? 0.0 : total[i] + gain * r * factor_[i] * to_p;
       if (clamp) p = std::max(p, 0.0);
       pressure_[i] = Real(p - total[i]);
       // Where pressure acts, expansion is an error too (it is pressure applied in excess,

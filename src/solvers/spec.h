@@ -112,6 +112,7 @@ struct SimSpec {
   int dfsph_max_iterations = 100;
   double dfsph_chebyshev = 0.95;             // ρ of the Chebyshev acceleration (0 = plain Jacobi)
   SurfaceDensity dfsph_surface_density = SurfaceDensity::Rest;  // the clamped solve's target under a cut kernel
+  double dfsph_pressure_stabilisation = 0;   // β of the density solve's pressure Laplacian (0 = off)
 
   // Gas, self-gravitating SPH with adaptive smoothing lengths (method "gas"; docs/self-gravity.md)
   GasSmoothing gas_smoothing = GasSmoothing::Adaptive;
@@ -170,6 +171,7 @@ inline void copy_live_parameters(const SimSpec& from, SimSpec& to) {
   to.dfsph_max_divergence_error = from.dfsph_max_divergence_error;
   to.dfsph_max_iterations = from.dfsph_max_iterations;
   to.dfsph_chebyshev = from.dfsph_chebyshev;
+  to.dfsph_pressure_stabilisation = from.dfsph_pressure_stabilisation;
   to.gas_damping = from.gas_damping;
   to.gas_spring = from.gas_spring;
   to.self_gravity = from.self_gravity;

@@ -14,7 +14,8 @@
 #   release build's run checks; under ASan they took 25-70 s each, about 10 of the 24 minutes
 #   of the suite in the CI run of 2026-11-27 (docs/performance.md), and their code paths all run
 #   here through shorter tests of the same method, kernel and backend (the same tanks in 3D
-#   with PBF and DFSPH, the other dam breaks and toy stars, the GPU methods' comparisons).
+#   with PBF and DFSPH, the other dam breaks and toy stars, the GPU methods' comparisons; DFSPH's
+#   pressure stabilisation in GpuBackend.PressureStabilisationAsOnTheCpu's CPU run).
 # - RTSPH_ASAN_EXCLUDE: a ctest regex of tests to skip instead (default: LONG_PHYSICS; set it
 #   to a regex that matches nothing, e.g. '^$', to run everything).
 # Extra arguments go to ctest.
@@ -26,6 +27,7 @@ export RTSPH_SANITIZER=1
 LONG_PHYSICS='^(GpuBackend\.(Wcsph|Pbf|Dfsph)TankSettlesToRhoGH|Hydrostatic\.Tank(2D|3D)SettlesToRhoGH'
 LONG_PHYSICS+='|TransportVelocity\.TaylorGreenDecaysAtTheViscousRate|Gas\.ToyStarOscillatesAtItsAnalyticFrequencies'
 LONG_PHYSICS+='|Gas\.PolytropeRelaxesToLaneEmden|Methods/DamBreak2D\.SurgeFrontFollowsMartinMoyce/wcsph'
+LONG_PHYSICS+='|PressureStabilisation\.FixesTheLayerAlternatingPressure'
 LONG_PHYSICS+='|Methods/WallsHold\.DamBreakPutsNothingBack/dam_break_(2d|3d)_wcsph'
 LONG_PHYSICS+='|All/GpuMethods\.DamBreakFollowsTheCpuFor200Steps/"dfsph")( |$)'
 exclude="${RTSPH_ASAN_EXCLUDE-$LONG_PHYSICS}"

@@ -22,7 +22,7 @@ constexpr int kColumns = 12, kLayers = 16;
 // start's slosh, the pressure's time-weighted mean over the last 0.3 s of 1 s), narrower (12 × 12
 // columns instead of 24 × 24), with DFSPH at the standing wave's wide kernel (Wendland C2 at
 // h = 1.5 spacings, three wall layers) and the lattice's surface sums, where the alternating
-// mode was found (docs/validation.md, session 47).
+// mode was found (docs/validation-history.md, standing wave, session 47).
 SimSpec tank(double beta) {
   const double w = kColumns * kSpacing, depth = kLayers * kSpacing;
   SimSpec s = test::tank(3, w, depth, kSpacing);
@@ -77,7 +77,7 @@ double alternation(const std::vector<double>& p) {
 // The alternation falls as β grows, and the hydrostatic pressure stays. Measured (this tank; the
 // worst second difference over ρ0 g s): 1.49 at β = 0, 0.93 at 1, 0.40 at 3; in the validate
 // case's wider tank (24 × 24 columns) β = 1 took its profile's error from 4.8% to 0.7%
-// (docs/validation.md, session 48).
+// (docs/validation-history.md, standing wave, session 48).
 TEST(PressureStabilisation, FixesTheLayerAlternatingPressure) {
   const std::vector<double> off = settle(0.0), one = settle(1.0), three = settle(3.0);
   std::printf("worst second difference of the layer means over rho0 g s: beta 0: %.3f, 1: %.3f, 3: %.3f\n",

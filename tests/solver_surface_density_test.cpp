@@ -20,7 +20,7 @@ namespace {
 
 using test::resolve_params;
 
-// The 2D tank of the measurements in docs/validation.md (session 47): 0.2 m wide, 0.1 m deep,
+// The 2D tank of the measurements in docs/validation-history.md (standing wave, session 47): 0.2 m wide, 0.1 m deep,
 // spacing 0.01 m, DFSPH with Wendland C2 at h = 1.5 spacings and three wall layers.
 SimSpec wide_tank(SurfaceDensity target) {
   SimSpec s = test::tank(2, 0.2, 0.1, 0.01);

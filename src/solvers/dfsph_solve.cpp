@@ -25,7 +25,7 @@
 // pressure alternating from layer to layer (wavenumber π/s) exerts no force (solvers/jacobi.h),
 // so no sweep corrects it and each sweep adds the residual's share of that mode to it; the warm
 // start carries it on. The layer-averaged pressure of a 3D tank at rest then alternates by up to
-// ±40% near the surface (docs/validation.md, standing wave, session 47). As for equal-order
+// ±40% near the surface (docs/validation-history.md, standing wave, session 47). As for equal-order
 // finite elements (Brezzi & Pitkäranta 1984), the density solve's residual gets a Laplacian of
 // the pressure, r − β Δt² Σⱼ |m∇Wᵢⱼ|² (Pᵢ − Pⱼ): zero for a pressure linear across a full
 // support (the hydrostatic one), largest for the alternating mode, which it thereby fixes. Walls

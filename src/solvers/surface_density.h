@@ -5,8 +5,8 @@
 //
 // Why: with negative pressure clamped, a particle whose support the free surface cuts sums
 // below ρ0 at the fluid's spacing, so the constraint ρ ≥ ρ0 never pushes there: the surface band
-// falls into itself until its cut sums reach ρ0 (docs/validation.md, standing wave, sessions
-// 45-47). At h = s the band is one layer; at Wendland C2 with h = 1.5-2 spacings it is three or
+// falls into itself until its cut sums reach ρ0 (docs/validation-history.md, standing wave,
+// sessions 45-47). At h = s the band is one layer; at Wendland C2 with h = 1.5-2 spacings it is three or
 // four, and its slow compaction drives the drops' late drift and much of a wave's loss.
 #include <utility>
 #include <vector>

@@ -54,8 +54,8 @@ _WAVE = ("the default kernel (the cubic spline at h = s) damps gravity waves: on
          "amplitude after one period is 0.19-0.64 of the first's, at 20 or 40 layers deep, and the mode's energy "
          "turns into particle noise in the whole tank within a quarter period. WCSPH needs its α = 0.02 there "
          "(at h = s its Adami wall term runs away without it), and that α damps the noise; at h = 1.3 s the walls "
-         "hold without α and every method keeps 0.76-0.86 a period (docs/validation.md, 'A standing wave', "
-         "sessions 36-39). The remedy, the default kernel's width, changes every case and the cost of every step. "
+         "hold without α and every method keeps 0.76-0.86 a period (docs/validation.md, 'A standing wave'; "
+         "sessions 36-39 in docs/validation-history.md). The remedy, the default kernel's width, changes every case and the cost of every step. "
          "The figure is that noise's: the recorded one is the median of seven round-off draws (the AMD EPYC "
          "guest's run, session 38, and six with gravity nudged by 0-5e-7 on the Intel Xeon guest, session 39), "
          "which read WCSPH 0.44-0.89, PBF 0.62-0.97, DFSPH 0.49-0.84")

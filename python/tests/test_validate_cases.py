@@ -158,6 +158,23 @@ def test_issue_13_cases_run():
     assert not validate.CASES["couette_2d"]("pbf", "quick", 2).applicable
 
 
+def test_the_channels_widen_for_a_wider_kernel(monkeypatch):
+    """Poiseuille's and Couette's periodic channel is 8 columns at the cases' own kernels, and as
+    many as three of a kernel's supports need when `validate --set` widens it (the scene check
+    refuses a periodic extent under three supports: both cases were n/a at Wendland C2, h = 1.5 s)."""
+    from rtsph.validate import _common, cases
+    assert _common.periodic_columns({}, 8) == 8  # the cubic spline at h = s: 6.0006 spacings
+    wide = {"solver.kernel": "wendland_c2", "solver.smoothing_ratio": "1.5", "solver.boundary_layers": "3"}
+    monkeypatch.setattr(_common, "_OVERRIDES", wide)
+    assert _common.periodic_columns({}, 8) == 10  # 9.0009 spacings
+    monkeypatch.setattr(_common, "_OVERRIDES", dict(wide, **{"solver.smoothing_ratio": "2"}))
+    assert _common.periodic_columns({}, 8) == 13
+    monkeypatch.setattr(_common, "_OVERRIDES", wide)
+    for case in ("couette_2d", "poiseuille_2d"):
+        r = cases.CASES[case]("dfsph", "quick", 2)
+        assert r.applicable and r.metric != "(did not finish)" and r.particles == 10 * 20, (case, r.notes)
+
+
 def test_a_case_the_engine_cannot_build_says_why(monkeypatch):
     """A case whose scene the installed engine rejects (an older build that lacks a newer
     parameter) fails with the engine's message and the fix, not with a bare inf."""

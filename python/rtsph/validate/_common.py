@@ -36,6 +36,19 @@ def _simulation(scene, threads: int) -> "rtsph.Simulation":
         raise
 
 
+def periodic_columns(solver: dict, own: int) -> int:
+    """Columns of a periodic channel whose scene has this `solver` block: the case's own count, or
+    enough for the kernel when `validate --set` widens it. The scene check asks a periodic extent of
+    at least three kernel supports (the neighbour grid tiles each period with whole cells): 6
+    spacings at the default cubic spline with h = s, 9 at Wendland C2 with h = 1.5 s, 12 at h = 2 s.
+    The flow is uniform along the channel, so its length does not enter the reference."""
+    def setting(key, default):
+        value = _OVERRIDES.get(f"solver.{key}", solver.get(key, default))
+        return str(value).strip('"') if key == "kernel" else float(value)
+    support = (3.0 if setting("kernel", "cubic_spline") == "gaussian" else 2.0) * setting("smoothing_ratio", 1.0)
+    return max(own, int(3 * support * (1 + 1e-4)) + 1)
+
+
 @dataclass
 class Result:
     case: str

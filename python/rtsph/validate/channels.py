@@ -8,6 +8,7 @@ import numpy as np
 
 import rtsph
 
+from . import _common
 from ._common import NO_LAMINAR_VISCOSITY, Result, _finish, _simulation
 
 
@@ -27,8 +28,9 @@ def _poiseuille_run(method, n, threads, times):
     d = rtsph.scene("validate_poiseuille_2d").to_dict()  # the built-in scene at L/n, 8 columns
     d["solver"]["method"] = method
     d["fluid"]["spacing"] = L / n
-    d["domain"]["max"] = [8 * L / n, L]
-    d["fluid_blocks"][0]["max"] = [8 * L / n, L]
+    C = _common.periodic_columns(d["solver"], 8)
+    d["domain"]["max"] = [C * L / n, L]
+    d["fluid_blocks"][0]["max"] = [C * L / n, L]
     scene = rtsph.scene(d)
     sim = _simulation(scene, threads)
     vmax = F * L * L / (8 * nu)
@@ -114,7 +116,10 @@ def couette_exact(y, t, L=COUETTE_L, nu=COUETTE_NU, V0=COUETTE_V0):
 def _couette_run(method, n, threads):
     L, V0 = COUETTE_L, COUETTE_V0
     s = L / n
-    W = 8 * s
+    # The plate spans the periodic width exactly: 8 columns, or more for a kernel widened by
+    # `validate --set` (its extent must hold three supports).
+    C = _common.periodic_columns({}, 8)
+    W = C * s
     scene = rtsph.scene({
         "name": "validate_couette_2d", "dimension": 2,
         "domain": {"min": [0.0, 0.0], "max": [W, L + 4 * s], "periodic": "x"}, "gravity": [0.0, 0.0],
@@ -127,11 +132,13 @@ def _couette_run(method, n, threads):
         "obstacles": [{"shape": "rectangle", "center": [W / 2, L + 2 * s * (1 + 1e-6)], "half_extents": [W / 2, 2 * s],
                        "motion": {"type": "velocity", "velocity": [V0, 0.0]}}]})
     sim = _simulation(scene, threads)
-    # 8 n fluid particles; 8 × 2 × 2 container samples (periodic x: bottom and top walls) and
-    # 8 × 4 in the plate.
-    if sim.particle_count != 8 * n or sim.stats["boundary_particles"] != 64:
+    # C n fluid particles; C × layers × 2 container samples (periodic x: bottom and top walls) and
+    # C × 4 in the plate (C = 8 and two layers: 64).
+    layers = sim.scene.to_dict()["solver"]["boundary_layers"]
+    samples = C * (2 * layers + 4)
+    if sim.particle_count != C * n or sim.stats["boundary_particles"] != samples:
         raise RuntimeError(f"couette_2d: {sim.particle_count} fluid particles and {sim.stats['boundary_particles']} "
-                           f"boundary samples, expected {8 * n} and 64")
+                           f"boundary samples, expected {C * n} and {samples}")
     worst, profiles = 0.0, []
     for t in COUETTE_TIMES:
         sim.run(until=t)

@@ -1,9 +1,9 @@
 // Accelerations, one fluid particle per thread (the CPU's FluidWorld::accelerations):
 //   a_i = - sum_j m (P_i + P_j + Pi_ij) grad W_ij                     symmetric pressure (Monaghan 1992)
-//         + sum_j m nu (1/rho_i + 1/rho_j) (r.grad W)/(r^2 + 0.01h^2) v_ij   (Morris et al. 1997)
+//         + sum_j m nu (1/rho_i + 1/rho_j) (r.grad W)/(r^2 + eta^2) v_ij     (Morris et al. 1997)
 //         - sum_b Psi_b (P_i + P_b + Pi_ib) grad W_ib + beta-extrapolated wall viscosity
 //         + g + brush
-// with v_ij = v_i - v_j, Monaghan's Pi_ij = -alpha c0 h (v_ij.r_ij) / (rho_ij (r^2 + 0.01h^2)) for
+// with v_ij = v_i - v_j, Monaghan's Pi_ij = -alpha c0 h (v_ij.r_ij) / (rho_ij (r^2 + eta^2)) for
 // approaching pairs (at a wall sample against a free-slip ghost: 2(v_ib.n)(n.r_ib)), and the
 // no-slip factor beta = 1 + d_b/d_i on container walls and obstacle faces, for particles in front
 // of the sample (Morris, Fox & Zhu 1997, eqs. 30-31; d_i floored at a quarter spacing).

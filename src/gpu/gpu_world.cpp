@@ -155,7 +155,7 @@ void GpuWorld<D>::write_params(double dt, double kick_dt) {
   kernel_constants<D>(s.kernel, prm.h, p);
   p.mass = Real(prm.mass);
   p.support2 = Real(prm.support * prm.support);
-  p.eps = Real(0.01 * prm.h * prm.h);
+  p.eps = Real(prm.eta2);
   p.ach = Real(s.artificial_viscosity * prm.c0 * prm.h);
   p.nu = Real(s.viscosity);
   p.dmin = Real(0.25 * s.spacing);  // the CPU's kMinWallDistance (fluid_sums.cpp)

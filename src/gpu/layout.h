@@ -112,7 +112,7 @@ struct SphParams {
   vec4 brush;           // xyz centre (m), w radius (m)
   vec4 kernel_a;        // the kernel's constants, as its CPU object holds them (core/kernels.h)
   vec4 kernel_b;
-  float mass, support2, eps, ach;  // kg, m^2, 0.01h^2 (m^2), alpha c0 h (m^2/s)
+  float mass, support2, eps, ach;  // kg, m^2, eta^2 = 0.01 s^2 (m^2), alpha c0 h (m^2/s)
   float nu, dmin, inv_rho0, rho0;  // m^2/s, m (no-slip floor), m^3/kg, kg/m^3
   float tait_b, tait_gamma, stiffness, brush_strength;  // Pa, -, m^2/s^2, m/s^2
   float dt, kick_dt, put_back_margin, pad0;  // s, s (the kick before the drift), m

@@ -96,13 +96,14 @@ void FluidWorld<D>::clear(Real* const* arrays, std::size_t n, int count) {
 }
 
 // aᵢ = −Σⱼ mⱼ (pᵢ/ρᵢ² + pⱼ/ρⱼ² + Πᵢⱼ) ∇Wᵢⱼ                      symmetric pressure (Monaghan 1992)
-//      + Σⱼ mⱼ ν (1/ρᵢ + 1/ρⱼ) (rᵢⱼ·∇Wᵢⱼ)/(r² + 0.01h²) vᵢⱼ   laminar viscosity (Morris et al. 1997)
+//      + Σⱼ mⱼ ν (1/ρᵢ + 1/ρⱼ) (rᵢⱼ·∇Wᵢⱼ)/(r² + η²) vᵢⱼ       laminar viscosity (Morris et al. 1997)
 //      − Σ_b Ψ_b (pᵢ/ρᵢ² + p_b/ρ0² + Πᵢ_b) ∇Wᵢ_b + viscosity      boundary particles of Akinci
 //        et al. 2012 with the wall pressure p_b of Adami et al. 2012, so the fluid next to a
 //        wall carries the hydrostatic pressure instead of twice it (Akinci's p_b = 0 form)
 //      + g + brush
 // with vᵢⱼ = vᵢ − vⱼ (so viscosity pulls vᵢ towards vⱼ) and Monaghan's artificial viscosity
-// Πᵢⱼ = −α c0 h (vᵢⱼ·rᵢⱼ) / (ρ̄ᵢⱼ (r² + 0.01h²)) for approaching pairs only; at a wall sample
+// Πᵢⱼ = −α c0 h (vᵢⱼ·rᵢⱼ) / (ρ̄ᵢⱼ (r² + η²)) for approaching pairs only (η² = 0.01 s², the
+// spacing's, not h's: resolve_parameters); at a wall sample
 // with a free-slip ghost's velocity, vᵢ − v_ghost = 2((vᵢ − v_b)·n)n (n the wall's normal).
 //
 // Each term is a template flag, so a method asking for a subset (DFSPH: viscosity and external
@@ -125,7 +126,7 @@ template <bool kPressure, bool kViscosity, bool kExternal>
 void FluidWorld<D>::accelerations_impl(const ForceTerms& terms) {
   const std::size_t n = fluid_.size();
   const Real mass = Real(prm_.mass), support2 = Real(prm_.support * prm_.support);
-  const Real eps = Real(0.01 * prm_.h * prm_.h);
+  const Real eps = Real(prm_.eta2);
   const Real ach = Real(spec_.artificial_viscosity * prm_.c0 * prm_.h);
   const Real nu = Real(spec_.viscosity);
   const Real dmin = Real(kMinWallDistance * spec_.spacing);

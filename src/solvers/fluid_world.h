@@ -21,6 +21,7 @@ namespace rtsph {
 /// Constants derived once from the spec (SI units).
 struct ResolvedParams {
   double h = 0, support = 0;   // m: smoothing length and kernel support radius
+  double eta2 = 0;             // m²: η² in the viscous terms' 1/(r² + η²), 0.01 s² (resolve_parameters)
   double mass = 0;             // kg per fluid particle
   double rho0 = 0, c0 = 0;     // kg/m³, m/s (c0: WCSPH's sound speed; also scales Monaghan's Π)
   double tait_b = 0;           // Pa, B = ρ0 c0² / γ

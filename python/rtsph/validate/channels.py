@@ -205,8 +205,23 @@ def couette(method: str, level: str, threads: int) -> Result:
 # the vortex 2.6-4x too fast (docs/validation.md). The kernel is Wendland C2 with h = 2 spacings
 # (about 50 neighbours in 2D): Wendland kernels have no pairing instability (Dehnen & Aly 2012),
 # and the cubic spline at h = spacing (12 neighbours) with TVF still lost a third of the
-# amplitude in the first 0.3 s. RTSPH_VALIDATE_SHIFTING sets particle shifting A (off; measured).
-TG_SHIFTING = float(__import__("os").environ.get("RTSPH_VALIDATE_SHIFTING", "0"))
+# amplitude in the first 0.3 s.
+#
+# DFSPH also shifts its particles (Lind et al. 2012 with Skillen et al. 2013's coefficient, A = 1:
+# solver.shifting's value steady on still water; A = 2 heats it, shifting.cpp). Its density solve
+# turns whatever the arrangement does to the kernel sums into velocity: while the strained lattice
+# first rearranges (t ≈ 0.1-0.3 s) each solve's impulse takes amplitude from the vortex, the more
+# the tighter the solve (at 120², tolerance 1%, 0.1%, 0.01%: 2.2%, 5.4%, 13.5% off the decay rate,
+# the last at its sweep cap), and after it the decay runs at the exact rate. Shifting keeps the
+# arrangement uniform without a velocity, so the solve has less to turn: 1.0% at 120² (0.5: 2.6%,
+# 2: 0.06%), 0.21% at 160². WCSPH has no such solve (0.06% without shifting, 0.46% with it), so
+# it runs without (session 50, docs/validation.md). RTSPH_VALIDATE_SHIFTING sets A for both.
+_TG_SHIFTING_ENV = __import__("os").environ.get("RTSPH_VALIDATE_SHIFTING")
+TG_SHIFTING = {"wcsph": 0.0, "dfsph": 1.0}
+
+
+def _tg_shifting(method: str) -> float:
+    return float(_TG_SHIFTING_ENV) if _TG_SHIFTING_ENV is not None else TG_SHIFTING.get(method, 0.0)
 TG_TRANSPORT_VELOCITY = 1.0
 TG_KERNEL, TG_H = "wendland_c2", 2.0
 # The resolution resolves the lattice's first rearrangement (t ≈ 0.1-0.2 s), which costs DFSPH's
@@ -226,7 +241,7 @@ def _taylor_green_run(method, n, threads):
         "fluid": {"spacing": s, "viscosity": U * L / Re},
         # Negative pressures carry the vortex's low-pressure cores: no clamping.
         "solver": {"method": method, "artificial_viscosity": 0, "speed_of_sound": 10 * U,
-                   "clamp_negative_pressure": False, "shifting": TG_SHIFTING,
+                   "clamp_negative_pressure": False, "shifting": _tg_shifting(method),
                    "transport_velocity": TG_TRANSPORT_VELOCITY, "kernel": TG_KERNEL, "smoothing_ratio": TG_H},
         "fluid_blocks": [{"min": [0, 0], "max": [L, L]}]})
     sim = _simulation(scene, threads)
@@ -254,6 +269,8 @@ def taylor_green(method: str, level: str, threads: int) -> Result:
     if method == "pbf":
         r.applicable, r.notes = False, NO_LAMINAR_VISCOSITY
         return r
+    if _tg_shifting(method) > 0:
+        r.setup += f", particle shifting A = {_tg_shifting(method):g}"
     n = TG_N[level]
     t0 = time.perf_counter()
     sim, T, A, rate, exact = _taylor_green_run(method, n, threads)
@@ -262,7 +279,7 @@ def taylor_green(method: str, level: str, threads: int) -> Result:
     r.series = {"t_s": T, "amplitude_ms": A, "exact_ms": [math.exp(-exact * t) for t in T]}
     r.extra = {"decay_rate": rate, "exact_rate": exact}
     r.notes = (f"Transport-velocity formulation (Adami et al. 2013) with its momentum correction; particle "
-               f"shifting A = {TG_SHIFTING:g}. The run starts at p = 0 (the lattice's density), not at the "
+               f"shifting A = {_tg_shifting(method):g}. The run starts at p = 0 (the lattice's density), not at the "
                "vortex's pressure field.")
     if level == "full":
         for k in TG_CONVERGENCE_N:

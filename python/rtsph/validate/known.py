@@ -70,14 +70,6 @@ KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
                                                 "lattice the high one) and read low against WCSPH's 32.2 and "
                                                 "PBF's 34.1; was 0.115 before the 2D drops ran 8 s (session 34)",
                                           margin=1.3, noisy=True),
-    ("taylor_green_2d", "dfsph"): Known(0.0544, "the decay runs 5.4% fast at the quick 120² (0.49% at the full "
-                                              "160²; the full level's convergence runs 11.9%, 8.6%, 0.49% at "
-                                              "40², 80², 160²). Until session 49 Morris's regulariser η² = "
-                                              "0.01h² (h = 2 spacings here) took 1.5% off the viscous term, "
-                                              "and the quick figure read 3.6%; with η² = 0.01 s² the viscosity "
-                                              "is right (WCSPH's quick figure fell from 1.1% to 0.06%) and "
-                                              "DFSPH's own dissipation at this resolution shows "
-                                              "(docs/validation.md, 'Where it stands')"),
     ("standing_wave_2d", "wcsph"): Known(0.738, _WAVE, margin=1.5),
     ("standing_wave_2d", "pbf"): Known(0.906, _WAVE, margin=1.5),
     ("standing_wave_2d", "dfsph"): Known(0.664, _WAVE, margin=1.5),

@@ -9,8 +9,8 @@ measured (CPU, sessions 34-39: each entry's `why` says which runs) and why it fa
   finite one: "did not finish" is never within);
 - every listed entry still fails: one that passes must leave the list, so that it is guarded as
   a pass from then on. The exception is an entry marked noisy, whose figure is within its own
-  noise and passes or fails by round-off (DFSPH's 2D static drop, which since session 34 passes
-  at the bound's edge).
+  noise and passes or fails by round-off (none today; DFSPH's 2D static drop was one from
+  session 34 until session 50's surface options settled it).
 So the passing cases are held to their tolerances, the failing ones are held where they are,
 and the report still says FAIL for each. This is not the issue's "validate --quick passes":
 that needs this list empty.
@@ -63,13 +63,6 @@ _WAVE = ("the default kernel (the cubic spline at h = s) damps gravity waves: on
 # The static drops' figures are means over lattice draws (drops.DROPLET_DRAWS), each with its
 # standard uncertainty from the draws' spread (the report's notes).
 KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
-    ("static_droplet_2d", "dfsph"): Known(0.0873, "passes at the bound's edge: 0.087 ± 0.026 over 8 and 2 draws "
-                                                "(R1 29.5 ± 0.7 Pa, R2 16.02 ± 0.07), 0.5 of its uncertainty "
-                                                "below it, so another host's round-off may fail it. R1's draws "
-                                                "rest in different states (27.6-33.8 Pa at 5-8 s; the centred "
-                                                "lattice the high one) and read low against WCSPH's 32.2 and "
-                                                "PBF's 34.1; was 0.115 before the 2D drops ran 8 s (session 34)",
-                                          margin=1.3, noisy=True),
     ("standing_wave_2d", "wcsph"): Known(0.738, _WAVE, margin=1.5),
     ("standing_wave_2d", "pbf"): Known(0.906, _WAVE, margin=1.5),
     ("standing_wave_2d", "dfsph"): Known(0.664, _WAVE, margin=1.5),

@@ -28,7 +28,7 @@ def oscillating_droplet(method: str, level: str, threads: int) -> Result:
     rho0 = 1000.0
     omega2 = 6 * sigma / (rho0 * R ** 3) if sigma > 0 else float("nan")
     period_ref = 2 * math.pi / math.sqrt(omega2) if omega2 > 0 else float("nan")
-    sim = _simulation(_droplet_scene(method, 2, R, s, OSC_NU, "validate_oscillating_droplet_2d", OSC_STRETCH),
+    sim = _simulation(_droplet_scene(method, 2, R, s, OSC_NU, "validate_oscillating_droplet_2d", level, OSC_STRETCH),
                       threads)
     T, AX, AY = _track_semi_axes(sim, until=t_osc, every=0.005)
     # Period from the crossings of a_x − a_y through its mean (mode 2: the axes swap each half
@@ -50,7 +50,7 @@ def oscillating_droplet(method: str, level: str, threads: int) -> Result:
                error=worst, tolerance=1.0, particles=sim.particle_count,
                wall_s=time.perf_counter() - t0 + _seeded_s(cal),
                setup=(f"2D drop R = {R} m stretched to semi-axes {OSC_STRETCH}·R and R/{OSC_STRETCH}, zero gravity, "
-                      f"spacing {s} m, {_kernel_text(method, 2)}, γ = {DROPLET_GAMMA}, ν = {OSC_NU} m²/s for {t_osc} s, then ν = "
+                      f"spacing {s} m, {_kernel_text(method, 2, level)}, γ = {DROPLET_GAMMA}, ν = {OSC_NU} m²/s for {t_osc} s, then ν = "
                       f"{DROPLET_NU[2]} m²/s for {OSC_REST_S} s to rest"),
                reference="Rayleigh's mode 2: ω² = 6σ/(ρR³), σ from the static 2D droplet's calibration",
                notes=(f"σ = {sigma:.4g} N/m (static droplet at R = {R} m): predicted period {period_ref:.4g} s, "

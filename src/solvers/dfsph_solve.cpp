@@ -198,27 +198,22 @@ double Dfsph<D>::residual(bool density, double dt, const AlignedArray<Real>& tot
     for (std::size_t i = b; i < e; ++i) {
       Real vi[D];
       for (int k = 0; k < D; ++k) vi[k] = fv[k][i];
-      f8 rf{};
       double laplacian = 0;  // Σⱼ |∇Wᵢⱼ|² (Pᵢ − Pⱼ)
       if (beta > 0) {
-        // One walk for both sums: the stabilised solve costs a walk of the list less a sweep.
         const Real Pi = P[i];
         f8 lf{};
         for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
-          f8 g[D], vj[D], g2{};
-          for (int k = 0; k < D; ++k) g[k] = simd::load(pair_grad_.at(slot, k));
-          if constexpr (D == 3) simd::at_packed3(packed_v, j, vj[0], vj[1], vj[2]);
-          else simd::at_packed2(packed_v, j, vj[0], vj[1]);
+          f8 g2{};
           for (int k = 0; k < D; ++k) {
-            rf += (vi[k] - vj[k]) * g[k];
-            g2 += g[k] * g[k];
+            const f8 g = simd::load(pair_grad_.at(slot, k));
+            g2 += g * g;
           }
           lf += (Pi - simd::at(P, j)) * g2;
         });
         laplacian = simd::hsum(lf);
-      } else if constexpr (D == 3) {
-        // Without it, the walk as it was before the stabilisation existed (the same code, so
-        // the same fused multiply-adds: every figure at β = 0 keeps its bits).
+      }
+      f8 rf{};
+      if constexpr (D == 3) {
         for_each_cached_batch<D>(list, i, [&](i8 j, std::size_t slot) {
           f8 vj[3];
           simd::at_packed3(packed_v, j, vj[0], vj[1], vj[2]);

@@ -222,6 +222,8 @@ TG_SHIFTING = {"wcsph": 0.0, "dfsph": 1.0}
 
 def _tg_shifting(method: str) -> float:
     return float(_TG_SHIFTING_ENV) if _TG_SHIFTING_ENV is not None else TG_SHIFTING.get(method, 0.0)
+
+
 TG_TRANSPORT_VELOCITY = 1.0
 TG_KERNEL, TG_H = "wendland_c2", 2.0
 # The resolution resolves the lattice's first rearrangement (t ≈ 0.1-0.2 s), which costs DFSPH's

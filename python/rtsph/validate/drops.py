@@ -150,8 +150,8 @@ def _kernel_text(method: str, dim: int, level: str) -> str:
 # of session 41's CI draws give the 2D drops 0.6% (WCSPH, half of R1 and R2) and 2.1% (PBF), and
 # the 3D drops 2.3% (WCSPH, half of R2) and 3.1% (DFSPH), where all the draws read 1.3%, 2.1%,
 # 0.4% and 0.3% (tolerance 10%). Not halved: DFSPH's 2D R1 until session 50 (its draws rested in
-# different states), DFSPH's 2D R2 (two already) and PBF's 3D drops (6.5% with all the draws, 10.4% with half; its R2 draws spread 45-57
-# Pa). The full level keeps every draw.
+# different states), DFSPH's 2D R2 (two already) and PBF's 3D drops (6.5% with all the draws,
+# 10.4% with half; its R2 draws spread 45-57 Pa). The full level keeps every draw.
 QUICK_HALVED = {(2, "wcsph"): (True, True), (2, "pbf"): (True, True),  # (R1 halved, R2 halved)
                 (2, "dfsph"): (True, False),  # since session 50's surface options: R1's draws agree
                 (3, "wcsph"): (False, True), (3, "dfsph"): (False, True)}

@@ -51,7 +51,7 @@ def test_lattice_draws_shift_the_lattice_and_fill_the_ball(dim):
 def test_the_quick_level_halves_only_the_listed_draws():
     from rtsph.validate import drops
     quick = {(2, "wcsph"): (4, 2), (2, "pbf"): (4, 2), (2, "dfsph"): (4, 2),
-             (3, "wcsph"): (16, 4), (3, "pbf"): (16, 8), (3, "dfsph"): (16, 4)}
+             (3, "wcsph"): (16, 4), (3, "pbf"): (32, 8), (3, "dfsph"): (16, 4)}
     full = {(2, "wcsph"): (8, 4), (2, "pbf"): (8, 4), (2, "dfsph"): (8, 2),
             (3, "wcsph"): (16, 4), (3, "pbf"): (16, 4), (3, "dfsph"): (16, 4)}
     for (dim, m), draws in quick.items():

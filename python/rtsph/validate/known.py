@@ -9,8 +9,8 @@ measured (CPU, sessions 34-39: each entry's `why` says which runs) and why it fa
   finite one: "did not finish" is never within);
 - every listed entry still fails: one that passes must leave the list, so that it is guarded as
   a pass from then on. The exception is an entry marked noisy, whose figure is within its own
-  noise and passes or fails by round-off (none today; DFSPH's 2D static drop was one from
-  session 34 until session 50's surface options settled it).
+  noise and passes or fails by round-off (WCSPH's SPHERIC Test 2 since session 52; DFSPH's 2D
+  static drop was one from session 34 until session 50's surface options settled it).
 So the passing cases are held to their tolerances, the failing ones are held where they are,
 and the report still says FAIL for each. This is not the issue's "validate --quick passes":
 that needs this list empty.
@@ -66,7 +66,12 @@ KNOWN_FAILURES: Dict[Tuple[str, str], Known] = {
     ("standing_wave_2d", "wcsph"): Known(0.738, _WAVE, margin=1.5),
     ("standing_wave_2d", "pbf"): Known(0.906, _WAVE, margin=1.5),
     ("standing_wave_2d", "dfsph"): Known(0.664, _WAVE, margin=1.5),
-    ("spheric_test2_3d", "wcsph"): Known(0.0329, _SPH),
+    # WCSPH's figure sits at its line on some hosts: on the Intel Xeon guest (session 52) its eight
+    # round-off draws read 3.00-3.33 cm, three of them within 0.012 cm of the 3 cm (3.002, 3.006,
+    # 3.011). A pass there would be round-off's, not a fix: noisy, so it does not turn CI red.
+    ("spheric_test2_3d", "wcsph"): Known(0.0329, _SPH + "; on the Intel Xeon guest (session 52) WCSPH's "
+                                         "eight draws read 3.00-3.33 cm, three within 0.012 cm of the line",
+                                         noisy=True),
     ("spheric_test2_3d", "pbf"): Known(0.0360, _SPH),
     ("spheric_test2_3d", "dfsph"): Known(0.0357, _SPH),
 }

@@ -162,11 +162,11 @@ def _kernel_text(method: str, dim: int, level: str) -> str:
 # The 3D drops' 32 R1 draws are halved too since session 51: the first 16 of session 50's quick
 # run give 2.2% (WCSPH), 4.8% (PBF) and 4.4% (DFSPH) against 2.3%, 4.5% and 3.2% with all 32, and
 # save a quarter of each 3D case's work (R1's 32 small drops cost what R2's 4 large ones do).
-# PBF's 3D R1 keeps all 32 since session 52. Its draws, unlike WCSPH's and DFSPH's, are not the same
-# bits on every host (an Intel Xeon guest and an AMD EPYC one differ; WCSPH's and DFSPH's 3D figures
-# agree to the digit), so each host reads its own draw of the case. On the Intel guest the first 16
-# read 8.7% (tolerance 10%) and all 32 read 6.5%; on the AMD guest 4.8% and 4.5%. The other 16
-# cost about 10 s.
+# PBF's 3D R1 keeps all 32 since session 52. Its figure moves between hosts far more than WCSPH's
+# and DFSPH's, which read alike to the digit on an Intel Xeon guest and an AMD EPYC one (the
+# build is -march=native, and simd::rcp's hardware estimate differs by vendor). On the Intel
+# guest PBF's first 16 draws read 8.7% (tolerance 10%) and all 32 read 6.5%; on the AMD guest
+# 4.8% and 4.5%. The other 16 cost about 10 s.
 QUICK_HALVED = {(2, "wcsph"): (True, True), (2, "pbf"): (True, True),  # (R1 halved, R2 halved)
                 (2, "dfsph"): (True, False),  # since session 50's surface options: R1's draws agree
                 (3, "wcsph"): (True, True), (3, "pbf"): (False, False), (3, "dfsph"): (True, True)}

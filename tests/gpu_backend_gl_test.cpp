@@ -271,7 +271,7 @@ TEST_P(GpuMethods, CheckpointsResumeAcrossBackends) {
 }
 
 // The CPU methods' tank test (hydrostatic_check.h) on the GPU, with each method's tolerance:
-// WCSPH 5%, PBF 5% (at its stable weight), DFSPH 5% (below). (The 3D PBF tank measured 0.969 on the GPU, 3.1% low, against 0.9735 on the
+// WCSPH 5%, PBF 5% (at its stable weight, its bottom two rows), DFSPH 5% (below). (The 3D PBF tank measured 0.969 on the GPU, 3.1% low, against 0.9735 on the
 // CPU: both sit at the edge of PBF's 3%, PBF's own deficit (issue 9), so only 2D is asserted here.)
 TEST_F(GpuBackend, WcsphTankSettlesToRhoGH) {
   test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "wcsph", 0.05, 0,
@@ -281,13 +281,16 @@ TEST_F(GpuBackend, WcsphTankSettlesToRhoGH) {
 // figure moves by a percent with round-off: with gravity nudged by 0, 1e-7 and 3e-7 of itself the
 // GPU (llvmpipe) read 1.0549, 1.0478 and 1.0375, the CPU 1.0312, 1.0302 and 1.0269 (session 44,
 // the lattice wall volumes), and before those walls 1.0404, 1.0307, 1.0288 and 1.0419, 1.0449,
-// 1.0480. The CPU's 5% leaves no room for that spread on the GPU: 6%.
+// 1.0480: the CPU's 5% left no room for that spread on the GPU, and it was held to 6%. Since
+// session 52 the PBF tank tests read the bottom two rows, one period of the floor's row-to-row
+// alternation (hydrostatic_check.h): llvmpipe on the Intel Xeon guest read 1.0549 on the bottom
+// row and 1.0226 on two, so the GPU is held to the CPU's 5% again.
 TEST_F(GpuBackend, PbfTankSettlesToRhoGH) {
-  test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "pbf", 0.06, 3.0, [](const SimSpec& s) {
+  test::settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "pbf", 0.05, 3.0, [](const SimSpec& s) {
     SimSpec spec = s;
     spec.pbf_omega = 0;
     return gpu::make_gpu_simulation(spec, 1);
-  });
+  }, 2);
 }
 // DFSPH with the CPU test's tolerance for the 2D tank (5%: the CPU reads 3.9%; tests/
 // physics_hydrostatic_test.cpp says why it is not issue 9's 1%).

@@ -18,29 +18,41 @@ namespace rtsph::test {
 using MakeSimulation = std::function<std::unique_ptr<Simulation>(const SimSpec&)>;
 
 struct Bottom {
-  double ratio = 0;  // mean over the bottom row of p / (ρ0 g (H - y))
+  double ratio = 0;  // p / (ρ0 g (H - y)) over the bottom `rows` rows: the mean of the rows' means
   double surface = 0;
 };
 
-inline Bottom bottom_pressure(const Simulation& sim, double spacing, double rho0, double g) {
+// `rows` > 1 where the settled pressure alternates from row to row near the floor, a mode the
+// lattice's gradient sums cannot see, so it carries no force (docs/validation.md, the hydrostatic
+// section). PBF's 2D tank (release build, the last 0.3 s of 3 s) reads rows 0-5 at 1.042, 1.004,
+// 1.041, 1.012, 1.038, 1.019 of ρ0 g (H − y): its bottom row alone read the high phase, 1.043, and
+// 1.065 in the ASan build on an Intel Xeon guest, against the test's 5%. Two rows hold one period
+// of the mode and read the column's weight: 1.023 (ASan 1.014). WCSPH's and DFSPH's rows alternate
+// by a few tenths of a percent, and their tests read the bottom row as before.
+inline Bottom bottom_pressure(const Simulation& sim, double spacing, double rho0, double g, int rows = 1) {
   const auto v = sim.fluid();
   double top = 0;
   for (std::size_t i = 0; i < v.count; ++i) top = std::max(top, double(v.x[1][i]));
   const double H = top + 0.5 * spacing;
-  double sum = 0;
-  int n = 0;
+  double sum[4] = {}, ratio = 0;
+  int n[4] = {}, used = 0;
+  rows = std::clamp(rows, 1, 4);
   for (std::size_t i = 0; i < v.count; ++i) {
-    if (v.x[1][i] > spacing) continue;
-    sum += v.pressure[i] / (rho0 * g * (H - v.x[1][i]));
-    ++n;
+    const double y = v.x[1][i];
+    const int row = std::max(0, int(std::ceil(y / spacing)) - 1);  // row 0: y ≤ spacing
+    if (row >= rows) continue;
+    sum[row] += v.pressure[i] / (rho0 * g * (H - y));
+    ++n[row];
   }
-  return {n ? sum / n : 0, H};
+  for (int r = 0; r < rows; ++r)
+    if (n[r]) { ratio += sum[r] / n[r]; ++used; }
+  return {used ? ratio / used : 0, H};
 }
 
 /// The tank test, for any backend: `make` builds the simulation (make_simulation by default).
 inline void settles_to_hydrostatic(int dim, double width, double height, double spacing,
                                    const std::string& method = "wcsph", double tolerance = 0.05,
-                                   double t_end = 0, const MakeSimulation& make = nullptr) {
+                                   double t_end = 0, const MakeSimulation& make = nullptr, int rows = 1) {
   SimSpec spec = test::tank(dim, width, height, spacing);
   spec.method = method;
   // Damp the acoustic oscillation that the sudden start excites, so the test sees the settled
@@ -59,7 +71,7 @@ inline void settles_to_hydrostatic(int dim, double width, double height, double 
     // next with its iteration count, so a sample every 20 steps (3 or 4 in the window) could
     // land on the high or the low ones (measured 1.108 against 1.020 averaged over every step).
     if (sim->time() > t_end - 0.3) {
-      ratio_sum += bottom_pressure(*sim, spacing, rho0, g).ratio;
+      ratio_sum += bottom_pressure(*sim, spacing, rho0, g, rows).ratio;
       ke_late += sim->stats().kinetic_energy_j;
       ++samples;
     }
@@ -67,7 +79,7 @@ inline void settles_to_hydrostatic(int dim, double width, double height, double 
   const auto st = sim->stats();
   const double ratio = ratio_sum / samples;
   ke_late /= samples;
-  const Bottom b = bottom_pressure(*sim, spacing, rho0, g);
+  const Bottom b = bottom_pressure(*sim, spacing, rho0, g, rows);
   std::printf("%s %dD tank: bottom p / rho g (H - y) = %.4f (time-averaged), surface %.4f m, KE %.3g J "
               "(last step; %.3g J averaged over the last 0.3 s; peak %.3g J)\n", method.c_str(), dim, ratio,
               b.surface, st.kinetic_energy_j, ke_late, ke_early);

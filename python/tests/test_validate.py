@@ -216,15 +216,16 @@ def test_both_plot_panels_survive_a_worker_process():
 
 
 def test_jobs_start_the_longest_task_first():
-    # --jobs 2 finishes when its last task does: DFSPH's 2D static drop (with its oscillating
-    # drop, which reuses its σ) is the quick suite's longest and must start first, the cheap
-    # cases last, each case's methods together in the serial order otherwise.
+    # --jobs 2 finishes when its last task does: the 3D static drops (DFSPH's the longest) are
+    # the quick suite's longest since session 53 and must start first, then DFSPH's and WCSPH's
+    # 2D static drops (each with its oscillating drop, which reuses its σ), the cheap cases last,
+    # each case's methods together in the serial order otherwise.
     from rtsph.validate.parallel import tasks_for
     methods = ["wcsph", "pbf", "dfsph"]
     tasks = tasks_for(["hydrostatic_2d", "static_droplet_2d", "static_droplet_3d", "oscillating_droplet_2d"], methods)
-    assert tasks[0] == [("static_droplet_2d", "dfsph"), ("oscillating_droplet_2d", "dfsph")]
-    assert tasks[1] == [("static_droplet_2d", "wcsph"), ("oscillating_droplet_2d", "wcsph")]
-    assert [t[0] for t in tasks[2:5]] == [("static_droplet_3d", m) for m in methods]
+    assert [t[0] for t in tasks[0:3]] == [("static_droplet_3d", m) for m in ["dfsph", "wcsph", "pbf"]]
+    assert tasks[3] == [("static_droplet_2d", "dfsph"), ("oscillating_droplet_2d", "dfsph")]
+    assert tasks[4] == [("static_droplet_2d", "wcsph"), ("oscillating_droplet_2d", "wcsph")]
     assert tasks[5] == [("static_droplet_2d", "pbf"), ("oscillating_droplet_2d", "pbf")]
     assert [t[0] for t in tasks[6:]] == [("hydrostatic_2d", m) for m in methods]
     assert sorted(x for t in tasks for x in t) == sorted(

@@ -51,9 +51,9 @@ def test_lattice_draws_shift_the_lattice_and_fill_the_ball(dim):
 def test_the_quick_level_halves_only_the_listed_draws():
     from rtsph.validate import drops
     quick = {(2, "wcsph"): (4, 2), (2, "pbf"): (4, 2), (2, "dfsph"): (4, 2),
-             (3, "wcsph"): (16, 4), (3, "pbf"): (32, 8), (3, "dfsph"): (16, 4)}
+             (3, "wcsph"): (4, 1), (3, "pbf"): (4, 1), (3, "dfsph"): (4, 1)}
     full = {(2, "wcsph"): (8, 4), (2, "pbf"): (8, 4), (2, "dfsph"): (8, 2),
-            (3, "wcsph"): (16, 4), (3, "pbf"): (16, 4), (3, "dfsph"): (16, 4)}
+            (3, "wcsph"): (4, 1), (3, "pbf"): (4, 1), (3, "dfsph"): (4, 1)}
     for (dim, m), draws in quick.items():
         assert drops._draws(m, dim, "quick") == draws and drops._draws(m, dim, "full") == full[(dim, m)]
         static = drops.draw_keys(f"static_droplet_{dim}d", m, "quick")

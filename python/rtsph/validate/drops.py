@@ -29,7 +29,9 @@ from ._common import Result, _finish, _simulation
 # The EOS pressure alone is reported too (`p_eos` in the notes). The curvature term's virial
 # vanishes in the core (nᵢ ≈ 0 there) and is not added.
 DROPLET_GAMMA = 1.0          # Akinci's γ for every droplet case
-DROPLET_R1 = 0.05            # m: calibration radius (2D and 3D); the prediction is at 2·R1
+# m: the calibration radius; the prediction is at 2·R1. The 3D drops are twice the 2D ones, so that
+# they are 3.3 kernel supports across at the quick level (DROPLET_KERNEL, below).
+DROPLET_R1 = {2: 0.05, 3: 0.1}
 DROPLET_C0 = 10.0            # m/s
 # The kernel and h / spacing. Akinci's cohesion acts over the SPH kernel's support H. With the
 # cubic spline at h = spacing, H is two spacings: the cohesion pulls hardest at the lattice's own
@@ -41,10 +43,16 @@ DROPLET_C0 = 10.0            # m/s
 # jump over R1's read 0.435 (WCSPH) and 0.451 (PBF) at R1 = 2.5 H (s = 5 mm), 0.479 and 0.494 at
 # 4.2 H (3 mm, the quick level since session 33) against Laplace's 0.5. At 2.5 H the quick level
 # failed 3 of its 6 drops (the oscillating drops' periods 17-30% long with σ from there).
-# 3D keeps the cubic spline at h = spacing: its drops are 5-13 spacings across, 1.25-3.3 H at
-# H = 4 spacings (there R2/R1 read 0.87), and a 3D drop of 20 spacings at 270 neighbours is beyond
-# these cores.
-DROPLET_KERNEL = {2: ("wendland_c2", 2.0), 3: ("cubic_spline", 1.0)}
+# 3D ran the cubic spline at h = spacing until session 53, with R1 = 0.05 m (5 and 6.7 spacings):
+# the drop stayed a crystal there. Its core held a mean shear stress of 6-10% of its jump (the
+# principal values of the core's virial tensor 2.5-6 Pa apart; 0.5-0.6% in the liquid drops),
+# its draws spread 55-78 Pa at R1, and at the full level R2/R1 read 0.56-0.62 (11-24%). Wendland C2
+# at h = 1.5 spacings (H = 3 spacings, about 110 neighbours; its settled shear modulus in 2D a fifth
+# of the cubic spline's, docs/validation.md, "A standing wave") makes the 3D drop a liquid, and from
+# R1 = 3.3 H (10 spacings, 0.1 m at the quick 1 cm) it meets Laplace: R2/R1 0.49-0.51 with every
+# method, the draws within 1-2% of each other. At R1 = 2.2 H (0.05 m at 7.5 mm) it read 0.415 (WCSPH),
+# the small drop's bias the 2D drops show at 2.5 H. Session 53, docs/validation.md, droplet section.
+DROPLET_KERNEL = {2: ("wendland_c2", 2.0), 3: ("wendland_c2", 1.5)}
 # DFSPH's pressure is its density solve's multiplier, known to the solve's tolerance, and the
 # jump to be measured is 3-10% of the core's pressure (the rest balances the cohesion's bulk
 # tension). At the default 0.1% the quick 2D drop's core pressure cycled between 630 and 1,340 Pa
@@ -96,10 +104,10 @@ DROPLET_NU = {2: 0.01, 3: 0.02}  # m²/s: damps the static drops to rest (no eff
 # (their shells at 987-996 kg/m³). At 8 s the window (5.3-8 s) is past the ringing and the
 # drifts measured above; at 2.5 mm WCSPH's R1 reads 23.4 Pa from 3.5 s, PBF's 24.2 from 3 s, and
 # DFSPH's draw 0 still rises about 1% a second (20.6 Pa at 5 s, 21.6 at 8, 22.2 at 10). The 3D drops
-# keep 2-3 s: they creep for as long as they were run (WCSPH, draw 1: at 1 cm R1 100-110 Pa and R2
-# 64 to 57 Pa over 2-8 s; at 7.5 mm R1 64 to 53 and R2 38.6 to 34.0 over 3-8 s), a crystal's
-# slow rearrangement rather than a settling, and the longer run does not bring R2/R1 nearer 0.5
-# (0.64 at 7.5 mm, 8 s). docs/validation.md, droplet section, "Session 34: the drops had not settled".
+# run 2-3 s. At the cubic spline (until session 53) they crept for as long as they were run, a
+# crystal's slow rearrangement (docs/validation.md, droplet section, "Session 34: the drops had not
+# settled"). Since session 53 they are liquid (DROPLET_KERNEL): the full level is 8 mm, R1 = 12.5
+# spacings (4.2 H, where the 2D drops met Laplace), 3 s.
 # The quick 2D drops run 5 s since session 51 (window 3.3-5 s), for CI's time: since session 50's
 # DFSPH options every method's quick drop has settled by 3.2 s. Measured at 3 mm, draws 0 and 1,
 # the jump at every sample (docs/validation.md, droplet section, "Session 51"): WCSPH's R2 rings
@@ -109,7 +117,7 @@ DROPLET_NU = {2: 0.01, 3: 0.02}  # m²/s: damps the static drops to rest (no eff
 # between 3 and 6 s), a drift no window length removes. The full level keeps 8 s.
 DROPLET_LEVELS = {
     2: {"quick": (0.003, 5.0), "full": (0.0025, 8.0)},
-    3: {"quick": (0.01, 2.0), "full": (0.0075, 3.0)},
+    3: {"quick": (0.01, 2.0), "full": (0.008, 3.0)},
 }
 LAPLACE_TOL = 0.10
 # Draws per radius: each static drop is cut from the lattice shifted under the circle by another
@@ -124,8 +132,11 @@ LAPLACE_TOL = 0.10
 # liquid 2D drops (Wendland C2, h = 2 spacings) spread 2-6% per draw: fewer draws suffice. Their
 # quick level (3 mm) is nearly the full one (2.5 mm), and costs 0.6 of it per drop: the same draws
 # (halved at the quick level where a method's jumps agree: QUICK_HALVED, below).
-DROPLET_DRAWS = {"quick": {2: (8, 4), 3: (32, 8)},  # (at R1, at R2)
-                 "full": {2: (8, 4), 3: (16, 4)}}
+# The liquid 3D drops (since session 53) agree within 1-2% draw to draw at both radii, and one R2
+# drop costs what eight at R1 do (33,500 particles at the quick level, 65,000 at the full one): four
+# draws at R1 for the spread, one at R2.
+DROPLET_DRAWS = {"quick": {2: (8, 4), 3: (4, 1)},  # (at R1, at R2)
+                 "full": {2: (8, 4), 3: (4, 1)}}
 
 
 def _kernel_text(method: str, dim: int, level: str) -> str:
@@ -157,19 +168,11 @@ def _kernel_text(method: str, dim: int, level: str) -> str:
 # of session 41's CI draws give the 2D drops 0.6% (WCSPH, half of R1 and R2) and 2.1% (PBF), and
 # the 3D drops 2.3% (WCSPH, half of R2) and 3.1% (DFSPH), where all the draws read 1.3%, 2.1%,
 # 0.4% and 0.3% (tolerance 10%). Not halved: DFSPH's 2D R1 until session 50 (its draws rested in
-# different states), DFSPH's 2D R2 (two already) and PBF's 3D R2 (6.5% with all the draws, 10.4%
-# with half; its R2 draws spread 45-57 Pa). The full level keeps every draw.
-# The 3D drops' 32 R1 draws are halved too since session 51: the first 16 of session 50's quick
-# run give 2.2% (WCSPH), 4.8% (PBF) and 4.4% (DFSPH) against 2.3%, 4.5% and 3.2% with all 32, and
-# save a quarter of each 3D case's work (R1's 32 small drops cost what R2's 4 large ones do).
-# PBF's 3D R1 keeps all 32 since session 52. Its figure moves between hosts far more than WCSPH's
-# and DFSPH's, which read alike to the digit on an Intel Xeon guest and an AMD EPYC one (the
-# build is -march=native, and simd::rcp's hardware estimate differs by vendor). On the Intel
-# guest PBF's first 16 draws read 8.7% (tolerance 10%) and all 32 read 6.5%; on the AMD guest
-# 4.8% and 4.5%. The other 16 cost about 10 s.
+# different states), DFSPH's 2D R2 (two already). The full level keeps every draw.
+# The 3D drops' crystal draws (the cubic spline, until session 53) were halved too, save PBF's;
+# the liquid 3D drops take four at R1 and one at R2 at both levels (DROPLET_DRAWS).
 QUICK_HALVED = {(2, "wcsph"): (True, True), (2, "pbf"): (True, True),  # (R1 halved, R2 halved)
-                (2, "dfsph"): (True, False),  # since session 50's surface options: R1's draws agree
-                (3, "wcsph"): (True, True), (3, "pbf"): (False, False), (3, "dfsph"): (True, True)}
+                (2, "dfsph"): (True, False)}  # since session 50's surface options: R1's draws agree
 
 
 def _draws(method: str, dim: int, level: str):
@@ -353,20 +356,23 @@ def draw_keys(case: str, method: str, level: str):
     if dim is None:
         return []
     n1, n2 = _draws(method, dim, level)
-    keys = [(method, dim, DROPLET_R1, level, k) for k in range(n1)]
-    return keys + ([(method, dim, 2 * DROPLET_R1, level, k) for k in range(n2)] if case.startswith("static") else [])
+    R1 = DROPLET_R1[dim]
+    keys = [(method, dim, R1, level, k) for k in range(n1)]
+    return keys + ([(method, dim, 2 * R1, level, k) for k in range(n2)] if case.startswith("static") else [])
 
 
 def draw_cost(key) -> float:
     """A draw's relative cost, to start the longest first: its particles (the drop's area or
     volume over the spacing's) times the steps per simulated second each method takes relative to
     WCSPH's in 2D. The factors are the quick level's per-particle draw times on two cores (session
-    34: DFSPH's 2D drop 3.4 times WCSPH's, PBF's half; the 3D drops 0.3-0.35 of WCSPH's 2D per
-    particle); only their order matters."""
+    34: DFSPH's 2D drop 3.4 times WCSPH's, PBF's half; session 53: the liquid 3D drops, at about 110
+    neighbours, 2.1 (WCSPH), 1.7 (PBF) and 3.2 (DFSPH) times WCSPH's 2D per particle and second);
+    only their order matters."""
     method, dim, R, level, _ = key
     s, t_end = DROPLET_LEVELS[dim][level]
     n = math.pi * R * R / s ** 2 if dim == 2 else 4 / 3 * math.pi * R ** 3 / s ** 3
-    factor = {(2, "dfsph"): 3.4, (2, "wcsph"): 1.0, (2, "pbf"): 0.5}.get((dim, method), 0.35)
+    factor = {(2, "dfsph"): 3.4, (2, "wcsph"): 1.0, (2, "pbf"): 0.5,
+              (3, "dfsph"): 3.2, (3, "wcsph"): 2.1, (3, "pbf"): 1.7}.get((dim, method), 1.0)
     return n * t_end * factor
 
 
@@ -402,9 +408,9 @@ def calibrate_sigma(method: str, dim: int, level: str, threads: int) -> dict:
     key = (method, dim, level, _context())
     if key not in _SIGMA_CACHE:
         particles, dp, dp_eos, sem, jumps, series, seeded_s = _static_droplet_run(
-            method, dim, DROPLET_R1, level, threads, _draws(method, dim, level)[0])
+            method, dim, DROPLET_R1[dim], level, threads, _draws(method, dim, level)[0])
         factor = 1.0 if dim == 2 else 2.0
-        _SIGMA_CACHE[key] = {"sigma": dp * DROPLET_R1 / factor, "dp": dp, "dp_eos": dp_eos, "dp_sem": sem,
+        _SIGMA_CACHE[key] = {"sigma": dp * DROPLET_R1[dim] / factor, "dp": dp, "dp_eos": dp_eos, "dp_sem": sem,
                              "jumps": jumps, "series": series, "particles": particles, "seeded_s": seeded_s}
         return dict(_SIGMA_CACHE[key], fresh=True)
     return dict(_SIGMA_CACHE[key], fresh=False)
@@ -416,10 +422,21 @@ def _seeded_s(cal: dict) -> float:
     return cal["seeded_s"] if cal["fresh"] else 0.0
 
 
+def _sem_text(sem: float) -> str:
+    return f"± {sem:.2g}" if np.isfinite(sem) else "one draw"
+
+
+def _err_sem_text(err_sem: float) -> str:
+    """The error's uncertainty from the draws' spread: none to give with one draw at a radius."""
+    if np.isfinite(err_sem):
+        return f" ± {err_sem:.2g} from the draws' spread"
+    return " (one draw at a radius: no spread to give its uncertainty)"
+
+
 def static_droplet(dim: int):
     def run(method: str, level: str, threads: int) -> Result:
         s, t_end = DROPLET_LEVELS[dim][level]
-        R1, R2 = DROPLET_R1, 2 * DROPLET_R1
+        R1, R2 = DROPLET_R1[dim], 2 * DROPLET_R1[dim]
         factor = 1.0 if dim == 2 else 2.0
         t0 = time.perf_counter()
         cal = calibrate_sigma(method, dim, level, threads)
@@ -446,8 +463,8 @@ def static_droplet(dim: int):
                    reference=f"Laplace: Δp = {law}; σ(γ) calibrated once at R1, the jump at R2 predicted",
                    notes=(f"σ(γ = {DROPLET_GAMMA}) = {sigma:.4g} N/m{'' if dim == 3 else ' (per unit length)'} "
                           f"from Δp(R1) = {cal['dp']:.4g} Pa (± {cal['dp_sem']:.2g}, standard error over the draws); "
-                          f"predicted Δp(R2) = {predicted:.4g} Pa, measured {dp2:.4g} Pa (± {sem2:.2g}); the error "
-                          f"{err:.3g} ± {err_sem:.2g} from the draws' spread. Per draw: R1 "
+                          f"predicted Δp(R2) = {predicted:.4g} Pa, measured {dp2:.4g} Pa ({_sem_text(sem2)}); the error "
+                          f"{err:.3g}{_err_sem_text(err_sem)}. Per draw: R1 "
                           f"{', '.join(f'{j:.3g}' for j in cal['jumps'])} Pa; R2 {', '.join(f'{j:.3g}' for j in jumps2)} Pa. EOS pressure alone: "
                           f"{cal['dp_eos']:.4g} Pa at R1, {dp2_eos:.4g} Pa at R2 (the cohesion's bulk tension "
                           f"is the rest). Pressure = virial of the SPH pressure force + virial of the cohesion (Irving–Kirkwood)."),

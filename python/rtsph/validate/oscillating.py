@@ -19,7 +19,7 @@ PERIOD_TOL, CIRCULARITY_MIN = 0.15, 0.98
 
 
 def oscillating_droplet(method: str, level: str, threads: int) -> Result:
-    R = DROPLET_R1
+    R = DROPLET_R1[2]
     s, _ = DROPLET_LEVELS[2][level]
     t_osc = OSC_LEVELS[level]
     t0 = time.perf_counter()
